@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Quick start, part 2: install what Palpa needs, build it and run the whole test suite:
+# the release build (unit, command-line and data tests), then the same suite built with
+# AddressSanitizer and UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+
+echo "== release build and tests"
+bash scripts/build.sh release
+ctest --preset release
+
+echo "== sanitizer build (ASan + UBSan) and tests"
+bash scripts/build.sh dev
+ctest --preset dev
