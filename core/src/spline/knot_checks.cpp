@@ -1,0 +1,41 @@
+#include "knot_checks.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "palpa/spline/basis.hpp"
+
+namespace palpa::spline::detail {
+
+void check_knots(std::span<const double> knots, int degree, int count, const char* what) {
+  if (degree < 1 || degree > kMaxDegree) {
+    throw std::invalid_argument(std::string(what) + ": degree " + std::to_string(degree) +
+                                " outside 1.." + std::to_string(kMaxDegree));
+  }
+  if (count <= degree) {
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(count) +
+                                " control points are too few for degree " + std::to_string(degree));
+  }
+  if (knots.size() != static_cast<std::size_t>(count + degree + 1)) {
+    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(count + degree + 1) +
+                                " knots, got " + std::to_string(knots.size()));
+  }
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    if (!std::isfinite(knots[i]) || (i > 0 && knots[i] < knots[i - 1])) {
+      throw std::invalid_argument(std::string(what) + ": knots must be finite and non-decreasing (index " +
+                                  std::to_string(i) + ")");
+    }
+  }
+  if (!(knots.back() > knots.front())) {
+    throw std::invalid_argument(std::string(what) + ": empty knot range");
+  }
+}
+
+double clamp_to_knots(double u, std::span<const double> knots) {
+  if (!(u >= knots.front())) return knots.front();  // also maps NaN to the left end
+  if (u > knots.back()) return knots.back();
+  return u;
+}
+
+}  // namespace palpa::spline::detail
