@@ -1,0 +1,32 @@
+#pragma once
+// The authored description of one body: the discretized medial axis transform of the
+// paper's section 2.1 (skeleton points on a regular grid, sphere radii, material values).
+#include <array>
+#include <string>
+#include <vector>
+
+namespace palpa::mat {
+
+struct BodyGrid {
+  std::string id;
+  int rows = 0;  ///< points along u
+  int cols = 0;  ///< points along v
+  /// Skeleton points (m), row-major: point (i, j) at index i*cols + j.
+  std::vector<std::array<double, 3>> medial;
+  std::vector<double> radius;     ///< m, one per point; 0 on the grid boundary
+  std::vector<double> stiffness;  ///< N/m
+  std::vector<double> damping;    ///< N s/m; empty: the default damping ratio applies
+  std::vector<double> mass;       ///< kg; empty: the default mass applies
+
+  std::size_t point_count() const { return medial.size(); }
+};
+
+/// Values used where a case leaves damping or mass out. Each skeleton point is a
+/// mass-spring-damper (paper section 3.2): 1 g per point and a damping ratio of 0.7
+/// (b = 2 * 0.7 * sqrt(k m)) let a released surface settle quickly with little overshoot.
+struct MaterialDefaults {
+  double mass = 1e-3;          ///< kg per skeleton point
+  double damping_ratio = 0.7;  ///< zeta in b = 2 zeta sqrt(k m)
+};
+
+}  // namespace palpa::mat

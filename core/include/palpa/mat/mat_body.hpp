@@ -1,0 +1,61 @@
+#pragma once
+// A body of the medial-axis model (paper section 2.1): the skeleton surface SK carrying
+// position, radius and material channels, and the top and bottom contour surfaces SC.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "palpa/mat/body_grid.hpp"
+#include "palpa/spline/bspline_surface.hpp"
+#include "palpa/spline/interpolation.hpp"
+
+namespace palpa::mat {
+
+/// Channels of the skeleton surface SK.
+enum SkeletonChannel : int { kX = 0, kY, kZ, kRadius, kStiffness, kDamping, kMass, kSkeletonChannels };
+
+struct FitOptions {
+  spline::InterpolationOptions interpolation{};
+  MaterialDefaults defaults{};
+};
+
+/// The skeleton samples of a grid with defaults filled in: rows*cols points of
+/// kSkeletonChannels values (x, y, z, radius, stiffness, damping, mass).
+std::vector<double> skeleton_samples(const BodyGrid& grid, const MaterialDefaults& defaults = {});
+
+class MatBody {
+ public:
+  /// Fits SK through the grid, then the contours R = P + rN (top) and S = P - rN (bottom)
+  /// on SK's parameters and knots, so that a contour point at (u, v) lies over SK(u, v).
+  /// Throws spline::InterpolationError naming the body on degenerate input.
+  static MatBody fit(const BodyGrid& grid, const FitOptions& options = {});
+
+  const std::string& id() const { return id_; }
+  const spline::BSplineSurface& skeleton() const { return skeleton_; }
+  const spline::BSplineSurface& top() const { return top_; }
+  const spline::BSplineSurface& bottom() const { return bottom_; }
+  /// Parameters of the data sites: grid point (i, j) sits at (u_params()[i], v_params()[j]).
+  const std::vector<double>& u_params() const { return u_params_; }
+  const std::vector<double>& v_params() const { return v_params_; }
+
+  /// Bytes held by the model (surfaces, knots, parameters).
+  std::size_t memory_bytes() const;
+
+ private:
+  MatBody(std::string id, std::vector<double> u, std::vector<double> v, spline::BSplineSurface skeleton,
+          spline::BSplineSurface top, spline::BSplineSurface bottom);
+
+  std::string id_;
+  std::vector<double> u_params_;
+  std::vector<double> v_params_;
+  spline::BSplineSurface skeleton_;
+  spline::BSplineSurface top_;
+  spline::BSplineSurface bottom_;
+};
+
+/// Unit normal of SK's xyz at (u, v): normalize(Su x Sv), with a fallback where the
+/// cross product vanishes (a pole row or column): there the limit direction Su x Suv
+/// (or Suv x Sv) is used. Returns false when no direction can be found.
+bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v, double normal[3]);
+
+}  // namespace palpa::mat
