@@ -1,0 +1,358 @@
+#include "palpa/io/case_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "palpa/io/json_text.hpp"
+
+namespace palpa::io {
+namespace {
+
+using nlohmann::json;
+using L = CaseLimits;
+
+// Length in characters (UTF-8 code points), as the schema's maxLength counts.
+std::size_t utf8_length(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += (static_cast<unsigned char>(c) & 0xC0u) != 0x80u ? 1u : 0u;
+  return n;
+}
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+class Validator {
+ public:
+  void add(std::string where, std::string reason) {
+    if (problems_.size() < L::kMaxProblems) {
+      problems_.push_back({std::move(where), std::move(reason)});
+    } else {
+      ++dropped_;
+    }
+  }
+  bool ok() const { return problems_.empty(); }
+  std::vector<Problem> take() {
+    if (dropped_ > 0) problems_.push_back({"/", std::to_string(dropped_) + " more problems not shown"});
+    return std::move(problems_);
+  }
+  std::size_t count() const { return problems_.size() + dropped_; }
+
+ private:
+  std::vector<Problem> problems_;
+  std::size_t dropped_ = 0;
+};
+
+struct Range {
+  double lo;
+  double hi;
+  bool lo_open;  // true: lo itself is not allowed
+  const char* unit;
+};
+
+// Reads one number, checking type, finiteness and range. Returns false (with a problem) if bad.
+bool read_number(const json& value, const std::string& where, const char* name, Range range, Validator& v,
+                 double& out) {
+  if (!value.is_number()) {
+    v.add(where, std::string(name) + " must be a number, not " + value.type_name());
+    return false;
+  }
+  out = value.get<double>();
+  if (!std::isfinite(out)) {
+    v.add(where, std::string(name) + " is not finite");
+    return false;
+  }
+  if (range.lo == 0.0 && out < 0.0) {
+    v.add(where, "negative " + std::string(name) + " " + fmt(out) + " " + range.unit);
+    return false;
+  }
+  if (out < range.lo || (range.lo_open && out == range.lo) || out > range.hi) {
+    v.add(where, std::string(name) + " " + fmt(out) + " " + range.unit + " is outside " +
+                     (range.lo_open ? "(" : "[") + fmt(range.lo) + ", " + fmt(range.hi) + "] " + range.unit);
+    return false;
+  }
+  return true;
+}
+
+bool read_int(const json& obj, const std::string& base, const char* key, int lo, int hi, Validator& v, int& out) {
+  const std::string where = base + "/" + key;
+  if (!obj.contains(key)) {
+    v.add(base, std::string("missing \"") + key + "\"");
+    return false;
+  }
+  const json& value = obj[key];
+  if (!value.is_number_integer()) {
+    v.add(where, std::string(key) + " must be an integer, not " +
+                     (value.is_number() ? std::string("a fraction") : std::string(value.type_name())));
+    return false;
+  }
+  const auto big = value.is_number_unsigned() ? static_cast<long double>(value.get<std::uint64_t>())
+                                              : static_cast<long double>(value.get<std::int64_t>());
+  if (big < lo || big > hi) {
+    v.add(where, std::string(key) + " " + value.dump() + " is outside [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+    return false;
+  }
+  out = static_cast<int>(big);
+  return true;
+}
+
+// A per-point array of `count` numbers in `range`; an empty result means absent or bad.
+bool read_channel(const json& body, const std::string& base, const char* key, std::size_t count, Range range,
+                  bool required, Validator& v, std::vector<double>& out) {
+  const std::string where = base + "/" + key;
+  if (!body.contains(key)) {
+    if (required) v.add(base, std::string("missing \"") + key + "\"");
+    return !required;
+  }
+  const json& arr = body[key];
+  if (!arr.is_array()) {
+    v.add(where, std::string(key) + " must be an array of " + std::to_string(count) + " numbers");
+    return false;
+  }
+  if (arr.size() != count) {
+    v.add(where, std::string(key) + " has " + std::to_string(arr.size()) + " values, expected rows*cols = " +
+                     std::to_string(count));
+    return false;
+  }
+  out.resize(count);
+  bool good = true;
+  for (std::size_t k = 0; k < count; ++k) {
+    good = read_number(arr[k], where + "/" + std::to_string(k), key, range, v, out[k]) && good;
+  }
+  return good;
+}
+
+bool read_medial(const json& body, const std::string& base, std::size_t count, Validator& v,
+                 std::vector<std::array<double, 3>>& out) {
+  const std::string where = base + "/medial";
+  if (!body.contains("medial")) {
+    v.add(base, "missing \"medial\"");
+    return false;
+  }
+  const json& arr = body["medial"];
+  if (!arr.is_array()) {
+    v.add(where, "medial must be an array of [x, y, z] points");
+    return false;
+  }
+  if (arr.size() != count) {
+    v.add(where, "medial has " + std::to_string(arr.size()) + " points, expected rows*cols = " +
+                     std::to_string(count));
+    return false;
+  }
+  out.resize(count);
+  const Range range{-L::kMaxCoordinate, L::kMaxCoordinate, false, "m"};
+  bool good = true;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string pk = where + "/" + std::to_string(k);
+    if (!arr[k].is_array() || arr[k].size() != 3) {
+      v.add(pk, "a medial point must be an array of 3 numbers [x, y, z]");
+      good = false;
+      continue;
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      good = read_number(arr[k][c], pk + "/" + std::to_string(c), "coordinate", range, v, out[k][c]) && good;
+    }
+  }
+  return good;
+}
+
+// The paper's closure condition: r = 0 on the grid boundary, so the contours meet there.
+void check_boundary_radius(const mat::BodyGrid& g, const std::string& base, Validator& v) {
+  for (int i = 0; i < g.rows; ++i) {
+    for (int j = 0; j < g.cols; ++j) {
+      if (i != 0 && i != g.rows - 1 && j != 0 && j != g.cols - 1) continue;
+      const std::size_t k = static_cast<std::size_t>(i * g.cols + j);
+      if (g.radius[k] != 0.0) {
+        v.add(base + "/radius/" + std::to_string(k),
+              "radius " + fmt(g.radius[k]) + " m on the grid boundary (point " + std::to_string(i) + ", " +
+                  std::to_string(j) + "); it must be 0 there so the top and bottom contours close");
+      }
+    }
+  }
+}
+
+// Coincident neighbours make the interpolation singular, except inside a pole: a row or
+// column that collapses to one point as a whole (the grid's edge at a sphere's pole).
+void check_coincident(const mat::BodyGrid& g, const std::string& base, Validator& v) {
+  auto at = [&](int i, int j) { return g.medial[static_cast<std::size_t>(i * g.cols + j)]; };
+  std::vector<bool> pole_row(static_cast<std::size_t>(g.rows), true);
+  std::vector<bool> pole_col(static_cast<std::size_t>(g.cols), true);
+  for (int i = 0; i < g.rows; ++i)
+    for (int j = 1; j < g.cols; ++j)
+      if (at(i, j) != at(i, 0)) pole_row[static_cast<std::size_t>(i)] = false;
+  for (int j = 0; j < g.cols; ++j)
+    for (int i = 1; i < g.rows; ++i)
+      if (at(i, j) != at(0, j)) pole_col[static_cast<std::size_t>(j)] = false;
+
+  auto report = [&](int i, int j, int i0, int j0) {
+    v.add(base + "/medial/" + std::to_string(i * g.cols + j),
+          "skeleton point (" + std::to_string(i) + ", " + std::to_string(j) + ") coincides with its neighbour (" +
+              std::to_string(i0) + ", " + std::to_string(j0) + ")");
+  };
+  for (int i = 0; i < g.rows; ++i) {
+    for (int j = 0; j < g.cols; ++j) {
+      if (i > 0 && !pole_col[static_cast<std::size_t>(j)] && at(i, j) == at(i - 1, j)) report(i, j, i - 1, j);
+      if (j > 0 && !pole_row[static_cast<std::size_t>(i)] && at(i, j) == at(i, j - 1)) report(i, j, i, j - 1);
+    }
+  }
+}
+
+void read_body(const json& body, std::size_t index, std::set<std::string>& ids, Validator& v,
+               std::vector<mat::BodyGrid>& bodies) {
+  const std::string base = "/bodies/" + std::to_string(index);
+  if (!body.is_object()) {
+    v.add(base, "a body must be an object");
+    return;
+  }
+  const std::size_t before = v.count();
+  mat::BodyGrid g;
+  if (!body.contains("id")) {
+    v.add(base, "missing \"id\"");
+  } else if (!body["id"].is_string() || body["id"].get_ref<const std::string&>().empty()) {
+    v.add(base + "/id", "id must be a non-empty string");
+  } else if (utf8_length(body["id"].get_ref<const std::string&>()) > L::kMaxIdLength) {
+    v.add(base + "/id", "id is longer than " + std::to_string(L::kMaxIdLength) + " characters");
+  } else {
+    g.id = body["id"].get<std::string>();
+    if (!ids.insert(g.id).second) v.add(base + "/id", "duplicate body id \"" + g.id + "\"");
+  }
+
+  const bool rows_ok = read_int(body, base, "rows", L::kMinGrid, L::kMaxGrid, v, g.rows);
+  const bool cols_ok = read_int(body, base, "cols", L::kMinGrid, L::kMaxGrid, v, g.cols);
+  if (!rows_ok || !cols_ok) return;  // the per-point arrays cannot be checked without a size
+  if (g.rows * g.cols > L::kMaxPointsPerBody) {
+    v.add(base, "grid " + std::to_string(g.rows) + " x " + std::to_string(g.cols) + " exceeds " +
+                    std::to_string(L::kMaxPointsPerBody) + " points");
+    return;
+  }
+  const auto n = static_cast<std::size_t>(g.rows * g.cols);
+  const bool medial_ok = read_medial(body, base, n, v, g.medial);
+  const bool radius_ok = read_channel(body, base, "radius", n, {0.0, L::kMaxRadius, false, "m"}, true, v, g.radius);
+  read_channel(body, base, "stiffness", n, {0.0, L::kMaxStiffness, false, "N/m"}, true, v, g.stiffness);
+  read_channel(body, base, "damping", n, {0.0, L::kMaxDamping, false, "N s/m"}, false, v, g.damping);
+  read_channel(body, base, "mass", n, {0.0, L::kMaxMass, true, "kg"}, false, v, g.mass);
+  if (radius_ok) check_boundary_radius(g, base, v);
+  if (medial_ok) check_coincident(g, base, v);
+  if (v.count() == before) bodies.push_back(std::move(g));
+}
+
+CaseFile validate(json doc, Validator& v) {
+  CaseFile out;
+  if (!doc.is_object()) {
+    v.add("/", std::string("a case must be a JSON object, not ") + doc.type_name());
+    return out;
+  }
+  if (!doc.contains("format")) {
+    v.add("/", "missing \"format\" (expected \"palpa-case\")");
+  } else if (doc["format"] != "palpa-case") {
+    v.add("/format", "unknown format " + doc["format"].dump() + " (expected \"palpa-case\")");
+  }
+  if (!doc.contains("version")) {
+    v.add("/", "missing \"version\" (expected 1)");
+  } else if (!doc["version"].is_number_integer() || doc["version"] != 1) {
+    v.add("/version", "unsupported version " + doc["version"].dump() + " (this Palpa reads version 1)");
+  }
+  if (!doc.contains("title")) {
+    v.add("/", "missing \"title\"");
+  } else if (!doc["title"].is_string()) {
+    v.add("/title", std::string("title must be a string, not ") + doc["title"].type_name());
+  } else if (utf8_length(doc["title"].get_ref<const std::string&>()) > L::kMaxTitleLength) {
+    v.add("/title", "title is longer than " + std::to_string(L::kMaxTitleLength) + " characters");
+  } else {
+    out.title = doc["title"].get<std::string>();
+  }
+
+  if (!doc.contains("bodies")) {
+    v.add("/", "missing \"bodies\"");
+  } else if (!doc["bodies"].is_array() || doc["bodies"].empty()) {
+    v.add("/bodies", "bodies must be a non-empty array");
+  } else if (doc["bodies"].size() > static_cast<std::size_t>(L::kMaxBodies)) {
+    v.add("/bodies", "more than " + std::to_string(L::kMaxBodies) + " bodies");
+  } else {
+    std::set<std::string> ids;
+    for (std::size_t k = 0; k < doc["bodies"].size(); ++k) read_body(doc["bodies"][k], k, ids, v, out.bodies);
+  }
+
+  if (doc.contains("tumors")) {
+    const json& t = doc["tumors"];
+    if (!t.is_array()) {
+      v.add("/tumors", std::string("tumors must be an array, not ") + t.type_name());
+    } else {
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        if (!t[k].is_object()) v.add("/tumors/" + std::to_string(k), "a tumour must be an object");
+      }
+    }
+  }
+  out.document = std::move(doc);
+  return out;
+}
+
+}  // namespace
+
+CaseError::CaseError(std::string file, std::vector<Problem> problems)
+    : std::runtime_error(file + ": " + (problems.empty() ? std::string("invalid case")
+                                                           : problems.front().where + ": " + problems.front().reason)),
+      file_(std::move(file)),
+      problems_(std::move(problems)) {}
+
+std::vector<std::string> CaseError::lines() const {
+  std::vector<std::string> out;
+  for (const auto& p : problems_) out.push_back(file_ + ": " + p.where + ": " + p.reason);
+  if (out.empty()) out.push_back(what());
+  return out;
+}
+
+CaseFile parse_case(std::string_view text, const std::string& source) {
+  json doc;
+  if (auto problem = parse_json_text(text, L::kMaxDepth, doc)) throw CaseError(source, {*problem});
+  Validator v;
+  CaseFile out = validate(std::move(doc), v);
+  if (!v.ok()) throw CaseError(source, v.take());
+  return out;
+}
+
+CaseFile load_case(const std::filesystem::path& path) {
+  std::string text;
+  if (auto problem = read_text_file(path, L::kMaxFileBytes, text)) throw CaseError(path.string(), {*problem});
+  return parse_case(text, path.string());
+}
+
+json to_json(const CaseFile& file) {
+  json doc = file.document.is_object() ? file.document : json::object();
+  doc["format"] = "palpa-case";
+  doc["version"] = 1;
+  doc["title"] = file.title;
+  const json old_bodies = doc.contains("bodies") && doc["bodies"].is_array() ? doc["bodies"] : json::array();
+  json bodies = json::array();
+  for (std::size_t k = 0; k < file.bodies.size(); ++k) {
+    const auto& g = file.bodies[k];
+    // Keep the unknown fields of the body this one was loaded from (matched by id).
+    json b = json::object();
+    for (const auto& old : old_bodies) {
+      if (old.is_object() && old.contains("id") && old["id"] == g.id) b = old;
+    }
+    b["id"] = g.id;
+    b["rows"] = g.rows;
+    b["cols"] = g.cols;
+    b["medial"] = g.medial;
+    b["radius"] = g.radius;
+    b["stiffness"] = g.stiffness;
+    if (g.damping.empty()) b.erase("damping"); else b["damping"] = g.damping;
+    if (g.mass.empty()) b.erase("mass"); else b["mass"] = g.mass;
+    bodies.push_back(std::move(b));
+  }
+  doc["bodies"] = std::move(bodies);
+  return doc;
+}
+
+void save_case(const CaseFile& file, const std::filesystem::path& path) {
+  write_text_file_atomic(path, to_json(file).dump(2) + "\n");
+}
+
+}  // namespace palpa::io

@@ -1,0 +1,78 @@
+#include "palpa/io/csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+namespace palpa::io {
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == ',') {
+      out.emplace_back();
+    } else {
+      out.back().push_back(c);
+    }
+  }
+  for (auto& s : out) {
+    const auto b = s.find_first_not_of(" \t");
+    const auto e = s.find_last_not_of(" \t");
+    s = b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + v[i];
+  return s;
+}
+
+}  // namespace
+
+NumericTable read_numeric_csv(const std::filesystem::path& path, const std::vector<std::string>& header) {
+  const std::string name = path.string();
+  std::ifstream in(path);
+  if (!in) throw CsvError(name + ": cannot open (no such file or not readable)");
+  NumericTable table;
+  table.columns = header;
+  std::string line;
+  std::size_t number = 0;
+  bool have_header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    const auto fields = split(line);
+    if (!have_header) {
+      if (fields != header) {
+        throw CsvError(name + ": line " + std::to_string(number) + ": header must be \"" + joined(header) +
+                       "\", got \"" + line + "\"");
+      }
+      have_header = true;
+      continue;
+    }
+    if (fields.size() != header.size()) {
+      throw CsvError(name + ": line " + std::to_string(number) + ": expected " + std::to_string(header.size()) +
+                     " values, got " + std::to_string(fields.size()));
+    }
+    std::vector<double> row(fields.size());
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const auto& f = fields[c];
+      const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), row[c]);
+      if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(row[c])) {
+        throw CsvError(name + ": line " + std::to_string(number) + ": column " + header[c] + ": \"" + f +
+                       "\" is not a finite number");
+      }
+    }
+    table.rows.push_back(std::move(row));
+    table.line_numbers.push_back(number);
+  }
+  if (in.bad()) throw CsvError(name + ": read error");
+  if (!have_header) throw CsvError(name + ": empty file (expected the header \"" + joined(header) + "\")");
+  return table;
+}
+
+}  // namespace palpa::io

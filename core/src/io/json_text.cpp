@@ -1,0 +1,126 @@
+#include "palpa/io/json_text.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+namespace palpa::io {
+namespace {
+
+std::string position(std::string_view text, std::size_t offset) {
+  std::size_t line = 1;
+  std::size_t column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Offset of the first bracket that exceeds max_depth, or npos. Strings are skipped.
+std::size_t too_deep(std::string_view text, int max_depth) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string_view::npos;
+}
+
+// nlohmann's messages start "[json.exception.parse_error.101] parse error at line 1, column 5: ";
+// keep what follows the position.
+std::string parser_reason(const char* what) {
+  std::string s(what);
+  const auto at = s.find("column ");
+  if (at != std::string::npos) {
+    const auto colon = s.find(": ", at);
+    if (colon != std::string::npos) return s.substr(colon + 2);
+  }
+  const auto bracket = s.find("] ");
+  return bracket == std::string::npos ? s : s.substr(bracket + 2);
+}
+
+}  // namespace
+
+std::optional<Problem> read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes,
+                                      std::string& out) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return Problem{"file", "no such file"};
+  if (std::filesystem::is_directory(path, ec)) return Problem{"file", "is a folder, not a file"};
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return Problem{"file", "cannot read: " + ec.message()};
+  if (size > max_bytes) {
+    return Problem{"file", "is " + std::to_string(size) + " bytes, more than the limit of " +
+                               std::to_string(max_bytes)};
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Problem{"file", std::string("cannot open: ") + std::strerror(errno)};
+  out.assign(static_cast<std::size_t>(size), '\0');
+  in.read(out.data(), static_cast<std::streamsize>(size));
+  out.resize(static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) return Problem{"file", "read error"};
+  return std::nullopt;
+}
+
+std::optional<Problem> parse_json_text(std::string_view text, int max_depth, nlohmann::json& out) {
+  if (const auto deep = too_deep(text, max_depth); deep != std::string_view::npos) {
+    return Problem{position(text, deep), "not accepted: nesting deeper than " + std::to_string(max_depth) + " levels"};
+  }
+  try {
+    out = nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    return Problem{position(text, e.byte > 0 ? e.byte - 1 : 0), "not JSON: " + parser_reason(e.what())};
+  } catch (const nlohmann::json::exception& e) {
+    // Number overflow and the like carry no position: point at the offending token if we can.
+    std::string reason = parser_reason(e.what());
+    std::size_t offset = 0;
+    if (const auto q = reason.find('\''); q != std::string::npos) {
+      const auto q2 = reason.find('\'', q + 1);
+      if (q2 != std::string::npos) offset = text.find(reason.substr(q + 1, q2 - q - 1));
+    }
+    return Problem{position(text, offset == std::string_view::npos ? 0 : offset), "not JSON: " + reason};
+  }
+  return std::nullopt;
+}
+
+void write_text_file_atomic(const std::filesystem::path& path, std::string_view text) {
+  auto temp = path;
+  temp += ".tmp";
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temp, ignored);
+      throw std::runtime_error(path.string() + ": write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    throw std::runtime_error(path.string() + ": cannot replace: " + ec.message());
+  }
+}
+
+}  // namespace palpa::io
