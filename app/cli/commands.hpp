@@ -1,0 +1,24 @@
+#pragma once
+// The sub-commands of palpa-cli. Each registers its options on the app and returns the
+// function that runs it; the function returns the process exit code.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace palpa::cli {
+
+/// Exit codes shared by all commands.
+enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+Command add_validate_command(CLI::App& parent);
+Command add_fit_command(CLI::App& parent);
+
+/// Prints "palpa-cli: error: <message>" on one line of stderr.
+void print_error(const std::string& message);
+
+}  // namespace palpa::cli

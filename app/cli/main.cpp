@@ -1,0 +1,50 @@
+// palpa-cli: the headless tools of Palpa (validate and fit case files; later: probe,
+// simulate, score, batch, bench).
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "palpa/version.hpp"
+
+namespace palpa::cli {
+
+void print_error(const std::string& message) { std::fprintf(stderr, "palpa-cli: error: %s\n", message.c_str()); }
+
+}  // namespace palpa::cli
+
+int main(int argc, char** argv) {
+  using namespace palpa::cli;
+  CLI::App app{"Palpa command-line tools: case files, the medial-axis body model and (later) headless exercises.\n"
+               "Units are SI (m, N, N/m, kg, s) in every file and option.",
+               "palpa-cli"};
+  app.set_version_flag("--version", std::string("palpa-cli ") + palpa::kVersion);
+  app.require_subcommand(0, 1);  // checked after parsing, so unknown words are named first
+  app.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.\nRun 'palpa-cli COMMAND --help' for a command's options.");
+
+  std::vector<Command> commands{add_validate_command(app), add_fit_command(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    print_error(std::string(e.what()) + " (see palpa-cli --help)");
+    return kBadInput;
+  }
+  for (const auto& c : commands) {
+    if (c.app->parsed()) {
+      try {
+        return c.run();
+      } catch (const std::exception& e) {
+        print_error(e.what());
+        return kFailure;
+      }
+    }
+  }
+  print_error("a command is required: validate or fit (see palpa-cli --help)");
+  return kBadInput;
+}
