@@ -5,7 +5,7 @@ set -euo pipefail
 
 # What the current tree builds with. Later layers (ui/, device/) add theirs here.
 packages=(
-  build-essential cmake ninja-build pkg-config python3 python3-jsonschema
+  build-essential cmake ninja-build python3 python3-jsonschema
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
@@ -25,7 +25,8 @@ fi
 if [ "$(id -u)" -eq 0 ]; then
   sudo=()
 elif command -v sudo >/dev/null 2>&1; then
-  sudo=(sudo)
+  # -n: fail with a message instead of waiting for a password nobody can type (CI).
+  if [ -t 0 ]; then sudo=(sudo); else sudo=(sudo -n); fi
 else
   echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
   exit 1
@@ -33,5 +34,7 @@ fi
 
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-"${sudo[@]}" apt-get update -qq
-"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# A fresh machine may still be running unattended upgrades: wait for the dpkg lock.
+apt_opts=(-o DPkg::Lock::Timeout=600)
+"${sudo[@]}" apt-get "${apt_opts[@]}" update -qq
+"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get "${apt_opts[@]}" install -y -qq --no-install-recommends "${missing[@]}"

@@ -14,12 +14,8 @@ command -v gnuplot >/dev/null || { echo "render-case: needs gnuplot (apt-get ins
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 n=40
-{
-  echo "u,v"
-  for i in $(seq 0 $n); do for j in $(seq 0 $n); do
-    printf '%s,%s\n' "$(echo "scale=6; $i/$n" | bc)" "$(echo "scale=6; $j/$n" | bc)"
-  done; done
-} > "$tmp/uv.csv"
+awk -v n=$n 'BEGIN { print "u,v"; for (i = 0; i <= n; i++) for (j = 0; j <= n; j++) printf "%.6f,%.6f\n", i / n, j / n }' \
+  > "$tmp/uv.csv"
 body_opt=()
 [ -n "$body" ] && body_opt=(--body "$body")
 for s in top bottom skeleton; do

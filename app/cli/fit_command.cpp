@@ -15,7 +15,7 @@
 namespace palpa::cli {
 namespace {
 
-struct FitOptions {
+struct FitCommandOptions {
   std::string case_path;
   std::string body_id;
   std::string surface = "skeleton";
@@ -44,8 +44,10 @@ int print_eval(const spline::BSplineSurface& surface, bool skeleton, const std::
     for (std::size_t c = 0; c < 2; ++c) {
       const double x = uv.rows[r][c];
       if (x < 0.0 || x > 1.0) {
-        print_error(uv_path + ": line " + std::to_string(uv.line_numbers[r]) + ": " + uv.columns[c] + " = " +
-                    std::to_string(x) + " is outside [0, 1]");
+        char value[32];
+        std::snprintf(value, sizeof value, "%.17g", x);
+        print_error(uv_path + ": line " + std::to_string(uv.line_numbers[r]) + ": " + uv.columns[c] + " = " + value +
+                    " is outside [0, 1]");
         return kBadInput;
       }
     }
@@ -61,7 +63,7 @@ int print_eval(const spline::BSplineSurface& surface, bool skeleton, const std::
   return kOk;
 }
 
-void print_summary(const FitOptions& o, const io::CaseFile& file, std::size_t index, const mat::MatBody& body,
+void print_summary(const FitCommandOptions& o, const io::CaseFile& file, std::size_t index, const mat::MatBody& body,
                    double fit_ms) {
   const auto& grid = file.bodies[index];
   const auto& sk = body.skeleton();
@@ -84,7 +86,7 @@ void print_summary(const FitOptions& o, const io::CaseFile& file, std::size_t in
   std::printf("time      %.3f ms to fit the skeleton and both contours\n", fit_ms);
 }
 
-int run_fit(const FitOptions& o) {
+int run_fit(const FitCommandOptions& o) {
   io::CaseFile file;
   try {
     file = io::load_case(o.case_path);
@@ -107,7 +109,7 @@ int run_fit(const FitOptions& o) {
   std::unique_ptr<mat::MatBody> body;
   try {
     body = std::make_unique<mat::MatBody>(mat::MatBody::fit(file.bodies[index]));
-  } catch (const spline::InterpolationError& e) {
+  } catch (const mat::FitError& e) {
     print_error(o.case_path + ": /bodies/" + std::to_string(index) + ": cannot fit: " + e.what());
     return kBadInput;
   }
@@ -124,18 +126,19 @@ int run_fit(const FitOptions& o) {
 }  // namespace
 
 Command add_fit_command(CLI::App& parent) {
-  auto o = std::make_shared<FitOptions>();
+  auto o = std::make_shared<FitCommandOptions>();
   auto* app = parent.add_subcommand(
       "fit", "Fit a body's skeleton SK and its top and bottom contours (paper section 2.1); print a summary, "
              "or with --eval a CSV of the surface at given (u, v).");
   app->add_option("CASE", o->case_path, "case file (JSON)")->required();
   app->add_option("--body", o->body_id, "id of the body to fit (default: the first)");
-  app->add_option("--surface", o->surface, "surface to evaluate with --eval")
+  auto* eval = app->add_option("--eval", o->eval_path,
+                                "CSV with header 'u,v' (values in [0,1]); prints 'u,v,x,y,z' (+ "
+                                "'radius,stiffness,damping,mass' for the skeleton), one row per input row");
+  app->add_option("--surface", o->surface, "surface to evaluate with --eval: skeleton, top or bottom")
       ->check(CLI::IsMember({"skeleton", "top", "bottom"}))
-      ->default_str("skeleton");
-  app->add_option("--eval", o->eval_path,
-                  "CSV with header 'u,v' (values in [0,1]); prints 'u,v,x,y,z' (+ 'radius,stiffness,damping,mass' "
-                  "for the skeleton), one row per input row");
+      ->default_str("skeleton")
+      ->needs(eval);
   return {app, [o] { return run_fit(*o); }};
 }
 

@@ -21,13 +21,15 @@ std::vector<std::string> check(const std::string& path) {
     for (std::size_t k = 0; k < file.bodies.size(); ++k) {
       try {
         (void)mat::MatBody::fit(file.bodies[k]);
-      } catch (const spline::InterpolationError& e) {
+      } catch (const mat::FitError& e) {
         lines.push_back(path + ": /bodies/" + std::to_string(k) + ": cannot fit: " + e.what());
       }
     }
     return lines;
   } catch (const io::CaseError& e) {
     return e.lines();
+  } catch (const std::exception& e) {  // e.g. out of memory: report this file, go on with the next
+    return {path + ": file: cannot be checked: " + e.what()};
   }
 }
 

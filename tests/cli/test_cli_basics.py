@@ -236,7 +236,15 @@ class CliBasics(unittest.TestCase):
         res = run(["fit", self.case])
         self.assertNoCrash(res, "fit summary")
         self.assertEqual(res.returncode, 0, res.stderr)
-        self.assertTrue(res.stdout.strip(), "fit without --eval should print a summary")
+        out = res.stdout
+        for label in ("grid", "degrees", "knots u", "knots v", "residual", "memory", "time"):
+            self.assertRegex(out, r"(?m)^%s\b" % label, "summary lacks its %r line:\n%s" % (label, out))
+        # The residual at the data sites is round-off: every figure on those lines is tiny
+        # next to the case's scale (positions ~1e-2 m, stiffness ~1e2 N/m).
+        res_lines = out[out.index("residual"):out.index("memory")]
+        figures = [float(x) for x in re.findall(r"(\d+(?:\.\d+)?e[-+]\d+|\b0\b)", res_lines)]
+        self.assertTrue(figures, res_lines)
+        self.assertLess(max(figures), 1e-10, res_lines)
 
     def test_fit_eval_csv_shape(self):
         for surface, header in [("skeleton", "u,v,x,y,z,radius,stiffness,damping,mass"),

@@ -38,9 +38,9 @@ TEST(MatBody, FlatSkeletonGivesContoursAtPlusMinusTheRadiusInClosedForm) {
   }
 }
 
-TEST(MatBody, CylinderSkeletonContoursSitAtTheOffsetRadius) {
-  // Skeleton on a cylinder of radius 0.1 about the y axis; the MAT radius pushes the
-  // contours to 0.1 +- r from the axis at the data sites.
+BodyGrid cylinder_body() {
+  // Skeleton on a cylinder of radius 0.1 m about the y axis: u runs with the angle phi
+  // (from +x towards +z), v along +y.
   BodyGrid g;
   g.id = "cyl";
   g.rows = 7;
@@ -55,23 +55,38 @@ TEST(MatBody, CylinderSkeletonContoursSitAtTheOffsetRadius) {
       g.stiffness.push_back(300.0);
     }
   }
+  return g;
+}
+
+TEST(MatBody, CylinderNormalsPointAtTheAxisAndTheTopContourIsTheInnerOne) {
+  // Su = (-sin, 0, cos) phi', Sv = (0, 1, 0) y': Su x Sv = -(cos, 0, sin), towards the
+  // axis. So "top" (+N) is the inner contour at 0.1 - r, "bottom" the outer at 0.1 + r.
+  const auto g = cylinder_body();
   const auto body = MatBody::fit(g);
   std::vector<double> top(3);
   std::vector<double> bottom(3);
-  for (int i = 1; i < g.rows - 1; ++i) {
-    for (int j = 1; j < g.cols - 1; ++j) {
+  double worst_angle = 0.0;
+  for (int i = 0; i < g.rows; ++i) {
+    for (int j = 0; j < g.cols; ++j) {
       const auto k = static_cast<std::size_t>(i * g.cols + j);
-      body.top().evaluate(body.u_params()[static_cast<std::size_t>(i)], body.v_params()[static_cast<std::size_t>(j)], top);
-      body.bottom().evaluate(body.u_params()[static_cast<std::size_t>(i)], body.v_params()[static_cast<std::size_t>(j)], bottom);
-      const double rt = std::hypot(top[0], top[2]);
-      const double rb = std::hypot(bottom[0], bottom[2]);
-      // u runs with phi (towards +z), v along +y: Su x Sv points towards the axis... either way
-      // the two contours are 0.1 +- r from it, to the accuracy of the skeleton's normal.
-      EXPECT_NEAR(std::max(rt, rb), 0.1 + g.radius[k], 2e-4);
-      EXPECT_NEAR(std::min(rt, rb), 0.1 - g.radius[k], 2e-4);
-      EXPECT_NEAR(top[1], g.medial[k][1], 1e-6);
+      const double u = body.u_params()[static_cast<std::size_t>(i)];
+      const double v = body.v_params()[static_cast<std::size_t>(j)];
+      double n[3];
+      ASSERT_TRUE(skeleton_normal(body.skeleton(), u, v, n));
+      const double phi = 0.5 * std::numbers::pi * i / (g.rows - 1);
+      const double dot = -(n[0] * std::cos(phi) + n[2] * std::sin(phi));
+      worst_angle = std::max(worst_angle, std::acos(std::min(1.0, dot)));
+      body.top().evaluate(u, v, top);
+      body.bottom().evaluate(u, v, bottom);
+      // |P + r N| from the axis with N within worst_angle of radial: 0.1 - r to O(r angle^2).
+      EXPECT_NEAR(std::hypot(top[0], top[2]), 0.1 - g.radius[k], 1e-7) << i << "," << j;
+      EXPECT_NEAR(std::hypot(bottom[0], bottom[2]), 0.1 + g.radius[k], 1e-7) << i << "," << j;
+      EXPECT_NEAR(top[1], g.medial[k][1], 1e-15 + 1e-2 * g.radius[k]);
     }
   }
+  // A 7-point cubic through a quarter circle: its tangent is off by 3.1e-3 rad at most
+  // (at the end rows, where the end conditions bite).
+  EXPECT_LT(worst_angle, 5e-3);
 }
 
 TEST(MatBody, TopIsThePlusNormalSide) {
@@ -153,10 +168,73 @@ TEST(MatBody, ModelIsCompact) {
   EXPECT_LT(body.memory_bytes(), payload + 4096);
 }
 
+TEST(MatBody, PoleAtTheFarEndAndCollapsedColumnHaveLimitNormals) {
+  // A cap whose apex is the LAST row (u = 1), and its transpose whose apex is the last
+  // column (v = 1): the limit normal must agree with the normal just inside the domain.
+  for (bool transpose : {false, true}) {
+    BodyGrid g;
+    g.id = "cap";
+    g.rows = transpose ? 8 : 6;
+    g.cols = transpose ? 6 : 8;
+    for (int i = 0; i < g.rows; ++i) {
+      for (int j = 0; j < g.cols; ++j) {
+        const int a = transpose ? j : i;  // along the apex direction
+        const int b = transpose ? i : j;
+        const int na = transpose ? g.cols : g.rows;
+        const int nb = transpose ? g.rows : g.cols;
+        const double rho = 0.04 * (na - 1 - a) / (na - 1);
+        const double phi = 2.0 * b / (nb - 1);
+        const bool edge = i == 0 || j == 0 || i == g.rows - 1 || j == g.cols - 1;
+        g.medial.push_back({rho * std::cos(phi), rho * std::sin(phi), 0.02 - 5.0 * rho * rho});
+        g.radius.push_back(edge ? 0.0 : 0.004);
+        g.stiffness.push_back(200.0);
+      }
+    }
+    const auto body = MatBody::fit(g);
+    double at_pole[3];
+    double near_pole[3];
+    const double u = transpose ? 0.5 : 1.0;
+    const double v = transpose ? 1.0 : 0.5;
+    ASSERT_TRUE(skeleton_normal(body.skeleton(), u, v, at_pole));
+    ASSERT_TRUE(skeleton_normal(body.skeleton(), transpose ? u : u - 1e-5, transpose ? v - 1e-5 : v, near_pole));
+    const double dot = at_pole[0] * near_pole[0] + at_pole[1] * near_pole[1] + at_pole[2] * near_pole[2];
+    EXPECT_GT(dot, 0.999) << (transpose ? "collapsed column" : "pole row at u = 1");
+  }
+}
+
+TEST(MatBody, AnOvershootingMaterialFieldIsRejectedWithItsPlace) {
+  // Stiffness stepping 200 -> 2000 N/m between two rows only 0.1 mm apart (the others are
+  // 10 mm apart): the interpolant swings far below zero between the sites, which would
+  // make forces pull into the body.
+  BodyGrid g;
+  g.id = "step";
+  g.rows = 7;
+  g.cols = 5;
+  for (int i = 0; i < g.rows; ++i) {
+    for (int j = 0; j < g.cols; ++j) {
+      const bool edge = i == 0 || j == 0 || i == g.rows - 1 || j == g.cols - 1;
+      g.medial.push_back({i < 3 ? 0.01 * i : 0.0201 + 0.01 * (i - 3), 0.01 * j, 0.0});
+      g.radius.push_back(edge ? 0.0 : 0.002);
+      g.stiffness.push_back(i < 3 ? 200.0 : 2000.0);
+    }
+  }
+  try {
+    (void)MatBody::fit(g);
+    FAIL() << "expected FitError";
+  } catch (const FitError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("stiffness falls to"), std::string::npos) << what;
+    EXPECT_NE(what.find("body 'step'"), std::string::npos) << what;
+  }
+  // The same rise spread smoothly over the body (linear in x) fits.
+  for (std::size_t k = 0; k < g.point_count(); ++k) g.stiffness[k] = 200.0 + 30000.0 * g.medial[k][0];
+  EXPECT_NO_THROW((void)MatBody::fit(g));
+}
+
 TEST(MatBody, SizeMismatchIsRejected) {
   auto grid = test::flat_body(4, 4);
   grid.radius.pop_back();
-  EXPECT_THROW((void)MatBody::fit(grid), spline::InterpolationError);
+  EXPECT_THROW((void)MatBody::fit(grid), FitError);
 }
 
 }  // namespace

@@ -79,12 +79,41 @@ TEST(Surface, CornersAreTheCornerControlPointsAndParametersAreClamped) {
   for (double x : clamped) EXPECT_TRUE(std::isfinite(x));
 }
 
+TEST(Surface, DerivativesOnTheDomainBoundaryAgreeWithOneSidedDifferences) {
+  const auto s = random_surface(3);
+  const double h = 1e-6;
+  std::vector<double> d(4 * 3);
+  std::vector<double> a(3);
+  std::vector<double> b(3);
+  for (double u : {0.0, 1.0}) {
+    for (double v : {0.0, 0.37, 1.0}) {
+      s.derivatives(u, v, 1, d);
+      const double du = u == 0.0 ? h : -h;
+      const double dv = v == 1.0 ? -h : h;
+      s.evaluate(u, v, a);
+      s.evaluate(u + du, v, b);
+      for (int c = 0; c < 3; ++c) {
+        const auto uc = static_cast<std::size_t>(c);
+        EXPECT_NEAR(d[derivative_index(1, 0, 1, 3, c)], (b[uc] - a[uc]) / du, 2e-4) << u << "," << v;
+      }
+      s.evaluate(u, v + dv, b);
+      for (int c = 0; c < 3; ++c) {
+        const auto uc = static_cast<std::size_t>(c);
+        EXPECT_NEAR(d[derivative_index(0, 1, 1, 3, c)], (b[uc] - a[uc]) / dv, 2e-4) << u << "," << v;
+      }
+    }
+  }
+}
+
 TEST(Surface, RejectsInconsistentConstruction) {
   EXPECT_THROW(BSplineSurface(3, 3, {0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 0, 0, 1, 1, 1, 1}, 4, 4, 3,
                               std::vector<double>(10)),
                std::invalid_argument);
   EXPECT_THROW(BSplineSurface(3, 3, {0, 0, 0, 0, 1, 1, 1}, {0, 0, 0, 0, 1, 1, 1, 1}, 4, 4, 3,
                               std::vector<double>(48)),
+               std::invalid_argument);
+  // Unclamped ends would divide by a zero-length end interval.
+  EXPECT_THROW(BSplineSurface(1, 1, {0, 0.5, 0.5, 1}, {0, 0, 1, 1}, 2, 2, 3, std::vector<double>(12)),
                std::invalid_argument);
 }
 

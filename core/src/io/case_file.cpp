@@ -1,5 +1,6 @@
 #include "palpa/io/case_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -18,6 +19,13 @@ std::size_t utf8_length(const std::string& s) {
   std::size_t n = 0;
   for (char c : s) n += (static_cast<unsigned char>(c) & 0xC0u) != 0x80u ? 1u : 0u;
   return n;
+}
+
+// A JSON value for an error message, cut short so one problem stays one readable line.
+std::string brief(const json& value) {
+  std::string s = value.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
 }
 
 std::string fmt(double x) {
@@ -86,15 +94,20 @@ bool read_int(const json& obj, const std::string& base, const char* key, int lo,
     return false;
   }
   const json& value = obj[key];
-  if (!value.is_number_integer()) {
+  // 5.0 counts as the integer 5, as in JSON Schema; 5.5 does not.
+  const bool integral = value.is_number_integer() ||
+                        (value.is_number_float() && std::isfinite(value.get<double>()) &&
+                         std::trunc(value.get<double>()) == value.get<double>());
+  if (!integral) {
     v.add(where, std::string(key) + " must be an integer, not " +
                      (value.is_number() ? std::string("a fraction") : std::string(value.type_name())));
     return false;
   }
   const auto big = value.is_number_unsigned() ? static_cast<long double>(value.get<std::uint64_t>())
-                                              : static_cast<long double>(value.get<std::int64_t>());
+                   : value.is_number_integer() ? static_cast<long double>(value.get<std::int64_t>())
+                                               : static_cast<long double>(value.get<double>());
   if (big < lo || big > hi) {
-    v.add(where, std::string(key) + " " + value.dump() + " is outside [" + std::to_string(lo) + ", " +
+    v.add(where, std::string(key) + " " + brief(value) + " is outside [" + std::to_string(lo) + ", " +
                      std::to_string(hi) + "]");
     return false;
   }
@@ -177,18 +190,24 @@ void check_boundary_radius(const mat::BodyGrid& g, const std::string& base, Vali
   }
 }
 
-// Coincident neighbours make the interpolation singular, except inside a pole: a row or
-// column that collapses to one point as a whole (the grid's edge at a sphere's pole).
+// Coincident neighbours make the interpolation singular, except inside a pole: a boundary
+// row or column that collapses to one point as a whole (the grid's edge at a dome's apex,
+// where the radius is 0). An interior row cannot be a pole: the skeleton's normal would
+// flip across it and the contours would pass through one another.
 void check_coincident(const mat::BodyGrid& g, const std::string& base, Validator& v) {
   auto at = [&](int i, int j) { return g.medial[static_cast<std::size_t>(i * g.cols + j)]; };
   std::vector<bool> pole_row(static_cast<std::size_t>(g.rows), true);
   std::vector<bool> pole_col(static_cast<std::size_t>(g.cols), true);
-  for (int i = 0; i < g.rows; ++i)
+  for (int i = 0; i < g.rows; ++i) {
+    const bool boundary = i == 0 || i == g.rows - 1;
     for (int j = 1; j < g.cols; ++j)
-      if (at(i, j) != at(i, 0)) pole_row[static_cast<std::size_t>(i)] = false;
-  for (int j = 0; j < g.cols; ++j)
+      if (!boundary || at(i, j) != at(i, 0)) pole_row[static_cast<std::size_t>(i)] = false;
+  }
+  for (int j = 0; j < g.cols; ++j) {
+    const bool boundary = j == 0 || j == g.cols - 1;
     for (int i = 1; i < g.rows; ++i)
-      if (at(i, j) != at(0, j)) pole_col[static_cast<std::size_t>(j)] = false;
+      if (!boundary || at(i, j) != at(0, j)) pole_col[static_cast<std::size_t>(j)] = false;
+  }
 
   auto report = [&](int i, int j, int i0, int j0) {
     v.add(base + "/medial/" + std::to_string(i * g.cols + j),
@@ -218,6 +237,9 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
     v.add(base + "/id", "id must be a non-empty string");
   } else if (utf8_length(body["id"].get_ref<const std::string&>()) > L::kMaxIdLength) {
     v.add(base + "/id", "id is longer than " + std::to_string(L::kMaxIdLength) + " characters");
+  } else if (std::any_of(body["id"].get_ref<const std::string&>().begin(), body["id"].get_ref<const std::string&>().end(),
+                         [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+    v.add(base + "/id", "id must not contain control characters (ids appear in messages and reports)");
   } else {
     g.id = body["id"].get<std::string>();
     if (!ids.insert(g.id).second) v.add(base + "/id", "duplicate body id \"" + g.id + "\"");
@@ -226,11 +248,6 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   const bool rows_ok = read_int(body, base, "rows", L::kMinGrid, L::kMaxGrid, v, g.rows);
   const bool cols_ok = read_int(body, base, "cols", L::kMinGrid, L::kMaxGrid, v, g.cols);
   if (!rows_ok || !cols_ok) return;  // the per-point arrays cannot be checked without a size
-  if (g.rows * g.cols > L::kMaxPointsPerBody) {
-    v.add(base, "grid " + std::to_string(g.rows) + " x " + std::to_string(g.cols) + " exceeds " +
-                    std::to_string(L::kMaxPointsPerBody) + " points");
-    return;
-  }
   const auto n = static_cast<std::size_t>(g.rows * g.cols);
   const bool medial_ok = read_medial(body, base, n, v, g.medial);
   const bool radius_ok = read_channel(body, base, "radius", n, {0.0, L::kMaxRadius, false, "m"}, true, v, g.radius);
@@ -251,12 +268,12 @@ CaseFile validate(json doc, Validator& v) {
   if (!doc.contains("format")) {
     v.add("/", "missing \"format\" (expected \"palpa-case\")");
   } else if (doc["format"] != "palpa-case") {
-    v.add("/format", "unknown format " + doc["format"].dump() + " (expected \"palpa-case\")");
+    v.add("/format", "unknown format " + brief(doc["format"]) + " (expected \"palpa-case\")");
   }
   if (!doc.contains("version")) {
     v.add("/", "missing \"version\" (expected 1)");
   } else if (!doc["version"].is_number_integer() || doc["version"] != 1) {
-    v.add("/version", "unsupported version " + doc["version"].dump() + " (this Palpa reads version 1)");
+    v.add("/version", "unsupported version " + brief(doc["version"]) + " (this Palpa reads version 1)");
   }
   if (!doc.contains("title")) {
     v.add("/", "missing \"title\"");
@@ -310,7 +327,7 @@ std::vector<std::string> CaseError::lines() const {
 
 CaseFile parse_case(std::string_view text, const std::string& source) {
   json doc;
-  if (auto problem = parse_json_text(text, L::kMaxDepth, doc)) throw CaseError(source, {*problem});
+  if (auto problem = parse_json_text(text, L::kMaxDepth, L::kMaxValues, doc)) throw CaseError(source, {*problem});
   Validator v;
   CaseFile out = validate(std::move(doc), v);
   if (!v.ok()) throw CaseError(source, v.take());

@@ -34,8 +34,16 @@ std::string joined(const std::vector<std::string>& v) {
 
 NumericTable read_numeric_csv(const std::filesystem::path& path, const std::vector<std::string>& header) {
   const std::string name = path.string();
+  std::error_code fs_error;
+  if (!std::filesystem::is_regular_file(path, fs_error)) {
+    throw CsvError(name + (std::filesystem::exists(path, fs_error) ? ": not a regular file"
+                                                                   : ": cannot open (no such file)"));
+  }
+  if (std::filesystem::file_size(path, fs_error) > kMaxCsvBytes) {
+    throw CsvError(name + ": larger than " + std::to_string(kMaxCsvBytes >> 20) + " MiB");
+  }
   std::ifstream in(path);
-  if (!in) throw CsvError(name + ": cannot open (no such file or not readable)");
+  if (!in) throw CsvError(name + ": cannot open (not readable)");
   NumericTable table;
   table.columns = header;
   std::string line;

@@ -22,9 +22,12 @@ std::string position(std::string_view text, std::size_t offset) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column);
 }
 
-// Offset of the first bracket that exceeds max_depth, or npos. Strings are skipped.
-std::size_t too_deep(std::string_view text, int max_depth) {
+// A look at the text's structure before the parser builds anything: how deep arrays and
+// objects nest, and roughly how many values there are (separators + containers), so
+// hostile input can neither exhaust the stack nor make the parser allocate gigabytes.
+std::optional<Problem> scan_structure(std::string_view text, int max_depth, std::size_t max_values) {
   int depth = 0;
+  std::size_t values = 0;
   bool in_string = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -34,15 +37,25 @@ std::size_t too_deep(std::string_view text, int max_depth) {
       } else if (c == '"') {
         in_string = false;
       }
-    } else if (c == '"') {
+      continue;
+    }
+    if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
-      if (++depth > max_depth) return i;
+      ++values;
+      if (++depth > max_depth) {
+        return Problem{position(text, i), "not accepted: nesting deeper than " + std::to_string(max_depth) + " levels"};
+      }
     } else if (c == ']' || c == '}') {
       --depth;
+    } else if (c == ',') {
+      ++values;
+    }
+    if (values > max_values) {
+      return Problem{position(text, i), "not accepted: more than " + std::to_string(max_values) + " values"};
     }
   }
-  return std::string_view::npos;
+  return std::nullopt;
 }
 
 // nlohmann's messages start "[json.exception.parse_error.101] parse error at line 1, column 5: ";
@@ -80,10 +93,9 @@ std::optional<Problem> read_text_file(const std::filesystem::path& path, std::ui
   return std::nullopt;
 }
 
-std::optional<Problem> parse_json_text(std::string_view text, int max_depth, nlohmann::json& out) {
-  if (const auto deep = too_deep(text, max_depth); deep != std::string_view::npos) {
-    return Problem{position(text, deep), "not accepted: nesting deeper than " + std::to_string(max_depth) + " levels"};
-  }
+std::optional<Problem> parse_json_text(std::string_view text, int max_depth, std::size_t max_values,
+                                       nlohmann::json& out) {
+  if (auto problem = scan_structure(text, max_depth, max_values)) return problem;
   try {
     out = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {

@@ -1,7 +1,10 @@
 #include "palpa/mat/mat_body.hpp"
 
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 
 namespace palpa::mat {
@@ -97,13 +100,15 @@ MatBody MatBody::fit(const BodyGrid& grid, const FitOptions& options) {
   if (grid.rows < 2 || grid.cols < 2 || grid.medial.size() != n || grid.radius.size() != n ||
       grid.stiffness.size() != n || (!grid.damping.empty() && grid.damping.size() != n) ||
       (!grid.mass.empty() && grid.mass.size() != n)) {
-    throw spline::InterpolationError("body '" + grid.id + "': channel sizes do not match rows * cols");
+    throw FitError("body '" + grid.id + "': channel sizes do not match rows * cols");
   }
   try {
     const auto samples = skeleton_samples(grid, options.defaults);
     const auto interpolator =
         spline::GridInterpolator::from_grid(samples, grid.rows, grid.cols, kSkeletonChannels, options.interpolation);
     auto skeleton = interpolator.interpolate(samples, kSkeletonChannels);
+    check_material_ranges(skeleton, interpolator.u_params(), interpolator.v_params(), samples, !grid.damping.empty(),
+                          !grid.mass.empty());
 
     // R = P + rN and S = P - rN at the data sites, with P and r the authored values.
     std::vector<double> top(n * 3);
@@ -115,8 +120,8 @@ MatBody MatBody::fit(const BodyGrid& grid, const FitOptions& options) {
         double normal[3] = {0.0, 0.0, 0.0};
         if (!skeleton_normal(skeleton, interpolator.u_params()[idx(i)], interpolator.v_params()[idx(j)], normal) &&
             r != 0.0) {
-          throw spline::InterpolationError("no skeleton normal at grid point (" + std::to_string(i) + ", " +
-                                           std::to_string(j) + ") where the radius is not zero");
+          throw FitError("no skeleton normal at grid point (" + std::to_string(i) + ", " + std::to_string(j) +
+                         ") where the radius is not zero");
         }
         for (std::size_t c = 0; c < 3; ++c) {
           top[k * 3 + c] = grid.medial[k][c] + r * normal[c];
@@ -129,7 +134,59 @@ MatBody MatBody::fit(const BodyGrid& grid, const FitOptions& options) {
     return {grid.id,          interpolator.u_params(),   interpolator.v_params(), std::move(skeleton),
             std::move(top_surface), std::move(bottom_surface)};
   } catch (const spline::InterpolationError& e) {
-    throw spline::InterpolationError("body '" + grid.id + "': " + e.what());
+    throw FitError("body '" + grid.id + "': " + e.what());
+  } catch (const FitError& e) {
+    throw FitError("body '" + grid.id + "': " + e.what());
+  }
+}
+
+void check_material_ranges(const spline::BSplineSurface& skeleton, const std::vector<double>& u_params,
+                           const std::vector<double>& v_params, const std::vector<double>& samples,
+                           bool damping_authored, bool mass_authored) {
+  // Lower bounds per channel, scaled by the data. A smooth fit of a field with a kink
+  // (e.g. stiffness 0 over a region) dips a little below zero next to the kink; up to 5 %
+  // of the channel's largest value is tolerated, and the force and dynamics code clamps
+  // such dips to 0. A larger dip means the data jump between close points: an error.
+  // Mass must stay positive.
+  std::array<double, kSkeletonChannels> lo{};
+  std::array<double, kSkeletonChannels> hi{};
+  std::array<double, kSkeletonChannels> data_min{};
+  lo.fill(0.0);
+  data_min.fill(std::numeric_limits<double>::infinity());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const auto c = k % kSkeletonChannels;
+    hi[c] = std::max(hi[c], std::abs(samples[k]));
+    data_min[c] = std::min(data_min[c], samples[k]);
+  }
+  const std::array<double, kSkeletonChannels> limit{
+      0, 0, 0, -0.05 * hi[kRadius], -0.05 * hi[kStiffness], -0.05 * hi[kDamping], 1e-3 * data_min[kMass]};
+  constexpr int kSub = 4;
+  const char* names[] = {"x", "y", "z", "radius", "stiffness", "damping", "mass"};
+  const char* units[] = {"m", "m", "m", "m", "N/m", "N s/m", "kg"};
+  std::array<double, kSkeletonChannels> value{};
+  const int m = static_cast<int>(u_params.size());
+  const int n = static_cast<int>(v_params.size());
+  for (int i = 0; i < m; ++i) {
+    for (int si = 0; si < (i + 1 < m ? kSub : 1); ++si) {
+      const double u = i + 1 < m ? u_params[idx(i)] + (u_params[idx(i + 1)] - u_params[idx(i)]) * si / kSub : 1.0;
+      for (int j = 0; j < n; ++j) {
+        for (int sj = 0; sj < (j + 1 < n ? kSub : 1); ++sj) {
+          const double v = j + 1 < n ? v_params[idx(j)] + (v_params[idx(j + 1)] - v_params[idx(j)]) * sj / kSub : 1.0;
+          skeleton.evaluate(u, v, value);
+          for (std::size_t c = kRadius; c < kSkeletonChannels; ++c) {
+            if (value[c] >= limit[c] && std::isfinite(value[c])) continue;
+            if ((c == kDamping && !damping_authored) || (c == kMass && !mass_authored)) continue;
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "%s falls to %.4g %s between the data sites near grid point (%d, %d) (u = %.4f, v = %.4f): "
+                          "the spline overshoots where neighbouring values jump; smooth the field or space the "
+                          "points further apart",
+                          names[c], value[c], units[c], si * 2 < kSub ? i : i + 1, sj * 2 < kSub ? j : j + 1, u, v);
+            throw FitError(text);
+          }
+        }
+      }
+    }
   }
 }
 

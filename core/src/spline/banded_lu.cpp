@@ -1,25 +1,34 @@
 #include "palpa/spline/banded_lu.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace palpa::spline {
 
-BandedLU::BandedLU(int n, int lower, int upper)
-    : n_(n),
-      lower_(lower),
-      upper_(upper),
-      band_(static_cast<std::size_t>(n) * static_cast<std::size_t>(lower + upper + 1), 0.0) {
-  if (n < 1 || lower < 0 || upper < 0) throw std::invalid_argument("BandedLU: bad size or bandwidth");
+namespace {
+int checked(int value, const char* what) {
+  if (value < 0) throw std::invalid_argument(std::string("BandedLU: negative ") + what);
+  return value;
 }
+}  // namespace
+
+// Bandwidths beyond n - 1 hold nothing, so they are clamped before the band is allocated.
+BandedLU::BandedLU(int n, int lower, int upper)
+    : n_(checked(n - 1, "size") + 1),
+      lower_(std::min(checked(lower, "bandwidth"), n_ - 1)),
+      upper_(std::min(checked(upper, "bandwidth"), n_ - 1)),
+      band_(static_cast<std::size_t>(n_) * static_cast<std::size_t>(lower_ + upper_ + 1), 0.0) {}
 
 double& BandedLU::at(int i, int j) {
+  assert(j - i >= -lower_ && j - i <= upper_ && "BandedLU::at outside the band");
   return band_[static_cast<std::size_t>(i * (lower_ + upper_ + 1) + (j - i + lower_))];
 }
 
 double BandedLU::at(int i, int j) const {
+  assert(j - i >= -lower_ && j - i <= upper_ && "BandedLU::at outside the band");
   return band_[static_cast<std::size_t>(i * (lower_ + upper_ + 1) + (j - i + lower_))];
 }
 

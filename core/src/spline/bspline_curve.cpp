@@ -20,6 +20,7 @@ BSplineCurve::BSplineCurve(int degree, std::vector<double> knots, int dim, std::
 }
 
 void BSplineCurve::evaluate(double u, std::span<double> out) const {
+  if (out.size() < static_cast<std::size_t>(dim_)) throw std::invalid_argument("BSplineCurve::evaluate: output too small");
   u = detail::clamp_to_knots(u, knots_);
   const int span = find_span(control_points(), degree_, u, knots_);
   std::array<double, kOrder> n{};
@@ -32,6 +33,9 @@ void BSplineCurve::evaluate(double u, std::span<double> out) const {
 }
 
 void BSplineCurve::derivatives(double u, int d, std::span<double> out) const {
+  if (d < 0 || d > kMaxDegree || out.size() < static_cast<std::size_t>((d + 1) * dim_)) {
+    throw std::invalid_argument("BSplineCurve::derivatives: order outside 0..7 or output too small");
+  }
   u = detail::clamp_to_knots(u, knots_);
   const int span = find_span(control_points(), degree_, u, knots_);
   std::array<double, kOrder * kOrder> ders{};

@@ -44,6 +44,7 @@ std::span<double> BSplineSurface::control_point(int i, int j) {
 }
 
 void BSplineSurface::evaluate(double u, double v, std::span<double> out) const {
+  if (out.size() < static_cast<std::size_t>(dim_)) throw std::invalid_argument("BSplineSurface::evaluate: output too small");
   u = detail::clamp_to_knots(u, knots_u_);
   v = detail::clamp_to_knots(v, knots_v_);
   const int span_u = find_span(rows_, degree_u_, u, knots_u_);
@@ -71,6 +72,9 @@ void BSplineSurface::evaluate(double u, double v, std::span<double> out) const {
 void BSplineSurface::derivatives(double u, double v, int d, std::span<double> out, int channels) const {
   if (d < 0 || d > kMaxDegree) throw std::invalid_argument("BSplineSurface::derivatives: order outside 0..7");
   const int nc = (channels <= 0 || channels > dim_) ? dim_ : channels;
+  if (out.size() < static_cast<std::size_t>((d + 1) * (d + 1) * nc)) {
+    throw std::invalid_argument("BSplineSurface::derivatives: output too small");
+  }
   u = detail::clamp_to_knots(u, knots_u_);
   v = detail::clamp_to_knots(v, knots_v_);
   const int du = std::min(d, degree_u_);

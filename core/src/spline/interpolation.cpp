@@ -59,7 +59,9 @@ std::vector<double> averaged_parameters(std::span<const double> values, int coun
   return params;
 }
 
-int default_degree(int points, int max_degree) { return std::max(1, std::min(max_degree, points - 1)); }
+int default_degree(int points, int max_degree) {
+  return std::max(1, std::min({max_degree, points - 1, kMaxDegree}));
+}
 
 }  // namespace
 
@@ -83,7 +85,10 @@ std::vector<double> grid_parameters_v(std::span<const double> values, int rows, 
 
 std::vector<double> averaging_knots(std::span<const double> params, int degree) {
   const int n = static_cast<int>(params.size());
-  if (degree < 1 || degree >= n) throw InterpolationError("degree must be in 1..points-1");
+  if (degree < 1 || degree >= n || degree > kMaxDegree) {
+    throw InterpolationError("degree " + std::to_string(degree) + " must be in 1..min(points - 1, " +
+                             std::to_string(kMaxDegree) + ")");
+  }
   std::vector<double> knots(idx(n + degree + 1), 0.0);
   for (int j = 1; j <= n - 1 - degree; ++j) {
     double sum = 0.0;
@@ -97,6 +102,9 @@ std::vector<double> averaging_knots(std::span<const double> params, int degree) 
 BandedLU CollocationSolver::build(std::span<const double> params, std::span<const double> knots,
                                   int degree) {
   const int n = static_cast<int>(params.size());
+  if (degree < 1 || degree >= n || degree > kMaxDegree || knots.size() != idx(n + degree + 1)) {
+    throw InterpolationError("collocation: degree and knots do not fit the parameters");
+  }
   std::vector<int> spans(idx(n));
   int lower = 0;
   int upper = 0;

@@ -30,6 +30,14 @@ void check_knots(std::span<const double> knots, int degree, int count, const cha
   if (!(knots.back() > knots.front())) {
     throw std::invalid_argument(std::string(what) + ": empty knot range");
   }
+  // Clamped ends: the curve starts and ends at its end control points, and the basis
+  // recurrences never divide by a zero-length end interval.
+  const auto p = static_cast<std::size_t>(degree);
+  for (std::size_t i = 1; i <= p; ++i) {
+    if (knots[i] != knots[0] || knots[knots.size() - 1 - i] != knots.back()) {
+      throw std::invalid_argument(std::string(what) + ": knots must be clamped (degree + 1 equal knots at each end)");
+    }
+  }
 }
 
 double clamp_to_knots(double u, std::span<const double> knots) {

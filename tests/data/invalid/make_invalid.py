@@ -259,7 +259,7 @@ def two_poles(c):
 
 
 add("pole-rows-coincide.json", "/bodies/0/medial", "coincid", False,
-    "rows 0 and 1 both collapse onto the same point", two_poles, lines=COLS)
+    "rows 0 and 1 both collapse onto the same point", two_poles, lines=2 * COLS - 1)
 
 
 def main():

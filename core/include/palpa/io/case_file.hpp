@@ -1,6 +1,7 @@
 #pragma once
 // Case files v1 (docs/case-format.md): JSON in SI units, strict validation, and unknown
 // fields preserved from load to save.
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -36,12 +37,14 @@ class CaseError : public std::runtime_error {
 
 /// Limits checked before anything is allocated from a file's claims.
 struct CaseLimits {
-  static constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
+  static constexpr std::uintmax_t kMaxFileBytes = 32u << 20;
   static constexpr int kMaxDepth = 64;
+  /// About 4 bodies of 256 x 256 points with every channel; keeps the parsed document
+  /// of a hostile file to a few hundred MB at most.
+  static constexpr std::size_t kMaxValues = 2'000'000;
   static constexpr int kMaxBodies = 256;
   static constexpr int kMinGrid = 2;
   static constexpr int kMaxGrid = 256;
-  static constexpr int kMaxPointsPerBody = 65536;
   static constexpr std::size_t kMaxIdLength = 64;
   static constexpr std::size_t kMaxTitleLength = 1024;
   static constexpr double kMaxCoordinate = 100.0;  // m

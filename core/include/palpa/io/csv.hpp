@@ -1,5 +1,6 @@
 #pragma once
 // Numeric CSV files with a fixed header (probe points, parameter lists, trajectories).
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,9 @@ class CsvError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Larger files are refused before reading (an hour of 10 kHz samples fits comfortably).
+inline constexpr std::uintmax_t kMaxCsvBytes = 4ull << 30;
 
 struct NumericTable {
   std::vector<std::string> columns;

@@ -17,10 +17,12 @@ namespace palpa::io {
 std::optional<Problem> read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes,
                                       std::string& out);
 
-/// Parses JSON after checking that arrays and objects nest no deeper than max_depth (so
-/// hostile input cannot exhaust the stack). Syntax errors come back as
+/// Parses JSON after checking on the text that arrays and objects nest no deeper than
+/// max_depth and that it holds at most about max_values values (so hostile input can
+/// neither exhaust the stack nor the memory). Syntax errors come back as
 /// { "line L, column C", "not JSON: ..." }.
-std::optional<Problem> parse_json_text(std::string_view text, int max_depth, nlohmann::json& out);
+std::optional<Problem> parse_json_text(std::string_view text, int max_depth, std::size_t max_values,
+                                       nlohmann::json& out);
 
 /// Writes text to path through a temporary file in the same folder and a rename, so the
 /// target is either the old or the new content, never a mix. Throws std::runtime_error.
