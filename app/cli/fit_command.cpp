@@ -20,6 +20,7 @@ struct FitCommandOptions {
   std::string body_id;
   std::string surface = "skeleton";
   std::string eval_path;
+  std::string parameterization = "chord";
 };
 
 std::string knot_list(const std::vector<double>& knots) {
@@ -108,7 +109,11 @@ int run_fit(const FitCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<mat::MatBody> body;
   try {
-    body = std::make_unique<mat::MatBody>(mat::MatBody::fit(file.bodies[index]));
+    mat::FitOptions fit_options;
+    if (o.parameterization == "centripetal") {
+      fit_options.interpolation.parameterization = spline::Parameterization::Centripetal;
+    }
+    body = std::make_unique<mat::MatBody>(mat::MatBody::fit(file.bodies[index], fit_options));
   } catch (const mat::FitError& e) {
     print_error(o.case_path + ": /bodies/" + std::to_string(index) + ": cannot fit: " + e.what());
     return kBadInput;
@@ -135,6 +140,10 @@ Command add_fit_command(CLI::App& parent) {
   auto* eval = app->add_option("--eval", o->eval_path,
                                 "CSV with header 'u,v' (values in [0,1]); prints 'u,v,x,y,z' (+ "
                                 "'radius,stiffness,damping,mass' for the skeleton), one row per input row");
+  app->add_option("--parameterization", o->parameterization,
+                  "parameters of the data sites: chord (chord length, the default) or centripetal")
+      ->check(CLI::IsMember({"chord", "centripetal"}))
+      ->default_str("chord");
   app->add_option("--surface", o->surface, "surface to evaluate with --eval: skeleton, top or bottom")
       ->check(CLI::IsMember({"skeleton", "top", "bottom"}))
       ->default_str("skeleton")

@@ -341,9 +341,9 @@ class Mismatch:
             OVERALL_WORST[0], OVERALL_WORST[1] = ratio, text
 
 
-def check_body(tc, label, case_path, body_json, workdir, subsample):
+def check_body(tc, label, case_path, body_json, workdir, subsample, centripetal=False):
     body = REF.body_from_json(body_json)
-    f = REF.fit(body)
+    f = REF.fit(body, centripetal=centripetal)
     bid = body["id"]
     seed0 = zlib.crc32(("%s/%s" % (label, bid)).encode())
     for surface in REF.SURFACES:
@@ -355,6 +355,8 @@ def check_body(tc, label, case_path, body_json, workdir, subsample):
             uv_path = os.path.join(workdir, "%s_%s_%s_uv.csv" % (slug(label), slug(bid), surface))
             write_uv(uv_path, pts)
             cmd = ["fit", case_path, "--body", bid, "--surface", surface, "--eval", uv_path]
+            if centripetal:
+                cmd += ["--parameterization", "centripetal"]
             cmd_text = " ".join([CLI] + cmd)
             try:
                 res = run_cli(cmd)
@@ -428,6 +430,30 @@ class SyntheticFitAgreement(unittest.TestCase):
         path = self._write(name, case)
         for b in case["bodies"]:
             check_body(self, name, path, b, self.workdir, subsample=False)
+
+
+class CentripetalAgreement(unittest.TestCase):
+    """`fit --parameterization centripetal` against the reference's centripetal option."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls._tmp = tempfile.TemporaryDirectory(prefix="palpa_fit_centripetal_")
+        cls.workdir = cls._tmp.name
+
+    @classmethod
+    def tearDownClass(cls):
+        cls._tmp.cleanup()
+
+    _write = SyntheticFitAgreement._write
+
+    def test_centripetal(self):
+        wanted = {"near_duplicate_6x6", "two_bodies", "wavy_40x30"}
+        cases = [c for c in synthetic_cases(False) if c[0] in wanted]
+        self.assertEqual(len(cases), len(wanted), "synthetic case names changed")
+        for name, case in cases:
+            path = self._write(name + "_centripetal", case)
+            for b in case["bodies"]:
+                check_body(self, name + " (centripetal)", path, b, self.workdir, subsample=False, centripetal=True)
 
 
 class SyntheticCasesAreValid(unittest.TestCase):
