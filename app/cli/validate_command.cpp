@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "palpa/io/case_file.hpp"
-#include "palpa/mat/mat_body.hpp"
+#include "palpa/scene/scene.hpp"
 
 namespace palpa::cli {
 namespace {
@@ -14,18 +14,10 @@ namespace {
 // Problems of one file, one line each; empty when the file is valid.
 std::vector<std::string> check(const std::string& path) {
   try {
-    const auto file = io::load_case(path);
-    std::vector<std::string> lines;
-    // A valid file must also fit: this catches what a per-field check cannot see
-    // (a collapsed grid, a pole with a non-zero radius).
-    for (std::size_t k = 0; k < file.bodies.size(); ++k) {
-      try {
-        (void)mat::MatBody::fit(file.bodies[k]);
-      } catch (const mat::FitError& e) {
-        lines.push_back(path + ": /bodies/" + std::to_string(k) + ": cannot fit: " + e.what());
-      }
-    }
-    return lines;
+    // A valid file must also fit and hold its tumours inside their bodies: this catches
+    // what a per-field check cannot see (a collapsed grid, an overshooting field).
+    (void)scene::Scene::build(io::load_case(path), path);
+    return {};
   } catch (const io::CaseError& e) {
     return e.lines();
   } catch (const std::exception& e) {  // e.g. out of memory: report this file, go on with the next

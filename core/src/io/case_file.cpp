@@ -259,6 +259,53 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   if (v.count() == before) bodies.push_back(std::move(g));
 }
 
+// A tumour: { "body", "center", "radius", "stiffness" } (m, m, N/m); extra fields allowed.
+// Whether it lies inside its body needs the fitted body: scene::Scene::build checks that.
+void read_tumour(const json& t, std::size_t index, const std::set<std::string>& ids, bool bodies_ok, Validator& v,
+                 std::vector<mat::Tumour>& out) {
+  const std::string base = "/tumors/" + std::to_string(index);
+  if (!t.is_object()) {
+    v.add(base, "a tumour must be an object");
+    return;
+  }
+  const std::size_t before = v.count();
+  mat::Tumour tumour;
+  if (!t.contains("body")) {
+    v.add(base, "missing \"body\" (the id of the body that holds the tumour)");
+  } else if (!t["body"].is_string()) {
+    v.add(base + "/body", "body must be a body id (a string)");
+  } else {
+    tumour.body = t["body"].get<std::string>();
+    if (bodies_ok && !ids.contains(tumour.body)) {
+      std::string known;
+      for (const auto& id : ids) known += (known.empty() ? "" : ", ") + id;
+      v.add(base + "/body", "unknown body " + brief(t["body"]) + " (bodies: " + known + ")");
+    }
+  }
+  if (!t.contains("center")) {
+    v.add(base, "missing \"center\"");
+  } else if (!t["center"].is_array() || t["center"].size() != 3) {
+    v.add(base + "/center", "center must be an array of 3 numbers [x, y, z]");
+  } else {
+    for (std::size_t c = 0; c < 3; ++c) {
+      read_number(t["center"][c], base + "/center/" + std::to_string(c), "coordinate",
+                  {-L::kMaxCoordinate, L::kMaxCoordinate, false, "m"}, v, tumour.center[c]);
+    }
+  }
+  if (!t.contains("radius")) {
+    v.add(base, "missing \"radius\"");
+  } else {
+    read_number(t["radius"], base + "/radius", "radius", {0.0, L::kMaxTumourRadius, true, "m"}, v, tumour.radius);
+  }
+  if (!t.contains("stiffness")) {
+    v.add(base, "missing \"stiffness\"");
+  } else {
+    read_number(t["stiffness"], base + "/stiffness", "stiffness", {0.0, L::kMaxStiffness, false, "N/m"}, v,
+                tumour.stiffness);
+  }
+  if (v.count() == before) out.push_back(std::move(tumour));
+}
+
 CaseFile validate(json doc, Validator& v) {
   CaseFile out;
   if (!doc.is_object()) {
@@ -301,9 +348,10 @@ CaseFile validate(json doc, Validator& v) {
     if (!t.is_array()) {
       v.add("/tumors", std::string("tumors must be an array, not ") + t.type_name());
     } else {
-      for (std::size_t k = 0; k < t.size(); ++k) {
-        if (!t[k].is_object()) v.add("/tumors/" + std::to_string(k), "a tumour must be an object");
-      }
+      std::set<std::string> ids;
+      for (const auto& b : out.bodies) ids.insert(b.id);
+      const bool bodies_ok = v.ok();  // unknown-body errors only make sense when the bodies read cleanly
+      for (std::size_t k = 0; k < t.size(); ++k) read_tumour(t[k], k, ids, bodies_ok, v, out.tumours);
     }
   }
   out.document = std::move(doc);
@@ -365,6 +413,20 @@ json to_json(const CaseFile& file) {
     bodies.push_back(std::move(b));
   }
   doc["bodies"] = std::move(bodies);
+  const json old_tumours = doc.contains("tumors") && doc["tumors"].is_array() ? doc["tumors"] : json::array();
+  if (!file.tumours.empty() || doc.contains("tumors")) {
+    json tumours = json::array();
+    for (std::size_t k = 0; k < file.tumours.size(); ++k) {
+      const auto& t = file.tumours[k];
+      json o = k < old_tumours.size() && old_tumours[k].is_object() ? old_tumours[k] : json::object();
+      o["body"] = t.body;
+      o["center"] = t.center;
+      o["radius"] = t.radius;
+      o["stiffness"] = t.stiffness;
+      tumours.push_back(std::move(o));
+    }
+    doc["tumors"] = std::move(tumours);
+  }
   return doc;
 }
 

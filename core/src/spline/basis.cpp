@@ -29,9 +29,14 @@ int find_span(int control_points, int p, double u, std::span<const double> knots
   return mid;
 }
 
-void basis_functions(int span, double u, int p, std::span<const double> knots, double* n) {
-  std::array<double, kOrder> left{};
-  std::array<double, kOrder> right{};
+// The kernels are templates on the degree P (0: the runtime degree p) so that the common
+// cubic case compiles to unrolled loops: the haptic loop calls them thousands of times a
+// second.
+template <int P>
+void basis_kernel(int span, double u, int p_runtime, std::span<const double> knots, double* n) {
+  const int p = P > 0 ? P : p_runtime;
+  std::array<double, kOrder> left;  // entries 1..p are written before they are read
+  std::array<double, kOrder> right;
   n[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     const auto uj = static_cast<std::size_t>(j);
@@ -48,13 +53,14 @@ void basis_functions(int span, double u, int p, std::span<const double> knots, d
   }
 }
 
-void basis_function_derivatives(int span, double u, int p, int d, std::span<const double> knots,
-                                double* ders) {
+template <int P>
+void derivative_kernel(int span, double u, int p_runtime, int d, std::span<const double> knots, double* ders) {
+  const int p = P > 0 ? P : p_runtime;
   // ndu holds the basis functions (upper triangle) and knot differences (lower triangle).
   std::array<std::array<double, kOrder>, kOrder> ndu;  // every entry read is written first
   std::array<std::array<double, kOrder>, 2> a{};
-  std::array<double, kOrder> left{};
-  std::array<double, kOrder> right{};
+  std::array<double, kOrder> left;
+  std::array<double, kOrder> right;
   const int stride = p + 1;
 
   ndu[0][0] = 1.0;
@@ -111,6 +117,22 @@ void basis_function_derivatives(int span, double u, int p, int d, std::span<cons
   }
   for (int k = dmax + 1; k <= d; ++k) {
     for (int j = 0; j <= p; ++j) ders[k * stride + j] = 0.0;
+  }
+}
+
+void basis_functions(int span, double u, int p, std::span<const double> knots, double* n) {
+  switch (p) {
+    case 2: basis_kernel<2>(span, u, p, knots, n); break;
+    case 3: basis_kernel<3>(span, u, p, knots, n); break;
+    default: basis_kernel<0>(span, u, p, knots, n); break;
+  }
+}
+
+void basis_function_derivatives(int span, double u, int p, int d, std::span<const double> knots, double* ders) {
+  switch (p) {
+    case 2: derivative_kernel<2>(span, u, p, d, knots, ders); break;
+    case 3: derivative_kernel<3>(span, u, p, d, knots, ders); break;
+    default: derivative_kernel<0>(span, u, p, d, knots, ders); break;
   }
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "palpa/mat/body_grid.hpp"
+#include "palpa/mat/tumour.hpp"
 
 namespace palpa::io {
 
@@ -52,14 +53,16 @@ struct CaseLimits {
   static constexpr double kMaxStiffness = 1e9;     // N/m
   static constexpr double kMaxDamping = 1e7;       // N s/m
   static constexpr double kMaxMass = 1e3;          // kg
+  static constexpr double kMaxTumourRadius = 1.0;  // m
   static constexpr std::size_t kMaxProblems = 20;  // per file; the rest are counted
 };
 
 struct CaseFile {
   std::string title;
   std::vector<mat::BodyGrid> bodies;
-  /// The document as loaded: fields Palpa does not know (and the tumours, until the
-  /// contact model reads them) are written back unchanged by save_case.
+  std::vector<mat::Tumour> tumours;
+  /// The document as loaded: fields Palpa does not know are written back unchanged by
+  /// save_case.
   nlohmann::json document = nlohmann::json::object();
 };
 

@@ -1,11 +1,21 @@
 #pragma once
 // Non-rational tensor-product B-spline surface with control points of any dimension:
 // the skeleton SK carries xyz + radius + material channels, the contours carry xyz.
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
 
 namespace palpa::spline {
+
+/// The non-zero basis functions at one (u, v): computed once, they evaluate every
+/// surface on the same knots (the skeleton and both contours of a MAT body share them).
+struct SurfaceBasis {
+  int span_u = 0;
+  int span_v = 0;
+  std::array<double, 8> nu{};  // N[span_u - p .. span_u](u)
+  std::array<double, 8> nv{};
+};
 
 class BSplineSurface {
  public:
@@ -26,8 +36,16 @@ class BSplineSurface {
   std::span<const double> control_point(int i, int j) const;
   std::span<double> control_point(int i, int j);
 
-  /// S(u, v) into out[0..dim). u and v are clamped to [0, 1] (the knot range).
-  void evaluate(double u, double v, std::span<double> out) const;
+  /// S(u, v) into out[0..dim) (only the first `channels` channels when 0 < channels < dim).
+  /// u and v are clamped to [0, 1] (the knot range).
+  void evaluate(double u, double v, std::span<double> out, int channels = 0) const;
+
+  /// The basis functions at (u, v), clamped into the knot range.
+  SurfaceBasis basis(double u, double v) const;
+
+  /// S at the parameters of `basis` (made by this surface or one with the same degrees
+  /// and knots), channels [first, first + count) into out[0..count).
+  void evaluate(const SurfaceBasis& basis, std::span<double> out, int first, int count) const;
 
   /// A3.6 SurfaceDerivsAlg1: out[((k*(d+1)) + l)*channels + c] = d^(k+l) S_c / du^k dv^l
   /// for k + l <= d and the first `channels` channels (all when channels <= 0); entries
@@ -38,6 +56,12 @@ class BSplineSurface {
   std::size_t memory_bytes() const;
 
  private:
+  // Degree-specialized kernels (P, Q = 0: the runtime degrees), see the .cpp.
+  template <int P, int Q>
+  void evaluate_kernel(double u, double v, double* out, int channels) const;
+  template <int P, int Q>
+  void derivatives_kernel(double u, double v, int d, double* out, int channels) const;
+
   int degree_u_;
   int degree_v_;
   int rows_;

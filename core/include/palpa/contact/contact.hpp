@@ -1,0 +1,27 @@
+#pragma once
+// Inside test and penetration (paper section 3.1): a probe Q with foot point P = SK(u, v)
+// is inside the body when |PQ| <= R(u, v); its penetration depth is R(u, v) - |PQ|.
+#include <limits>
+
+#include "palpa/contact/foot_point.hpp"
+#include "palpa/mat/mat_body.hpp"
+
+namespace palpa::contact {
+
+struct Contact {
+  FootPoint foot;
+  double depth = -std::numeric_limits<double>::infinity();  ///< m: R - |PQ|, negative outside
+  bool inside = false;                                       ///< depth >= 0
+  double radius = 0.0;     ///< R(u, v), m (a dip below 0 next to the boundary reads as 0)
+  double stiffness = 0.0;  ///< k(u, v), N/m (clamped at 0)
+  /// Unit direction from the foot point towards the probe, (Q - P)/|Q - P|: the way out of
+  /// the body. On the skeleton itself (|PQ| = 0) it is the skeleton normal N (top side).
+  Vec3 outward = Vec3::UnitZ();
+  /// +1 when the probe is on the top (+N) side of the skeleton, -1 on the bottom side.
+  int side = 1;
+};
+
+/// Evaluates radius, stiffness and the outward direction at a foot point.
+Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q);
+
+}  // namespace palpa::contact

@@ -1,0 +1,45 @@
+#pragma once
+// Contact force (paper section 3.4, docs/model.md): the normal spring k(u,v) * depth,
+// four shear springs to the contour at (u +- delta, v) and (u, v +- delta), and the
+// tumours a press reaches.
+#include <span>
+
+#include "palpa/contact/contact.hpp"
+#include "palpa/mat/tumour.hpp"
+
+namespace palpa::contact {
+
+/// How a tumour is felt (docs/model.md, "Tumours"). A tumour whose top lies s below the
+/// surface is met once the indentation passes reach * s; its spring then adds smoothly
+/// (a C1 ramp of width `ramp`), weighted by how far the tumour is beside the finger pad.
+struct TumourFeel {
+  double reach = 0.7;          ///< share of the overlying tissue a press must push through
+  double ramp = 1e-3;          ///< m, width of the smooth onset (no step a device would buzz on)
+  double pad_radius = 7.5e-3;  ///< m, fingertip pad radius: lateral reach beyond the tumour
+};
+
+struct ForceOptions {
+  bool shear = true;          ///< the four shear springs of section 3.4
+  double shear_delta = 0.1;   ///< their offset in parameter space (docs/model.md: why 0.1)
+  double max_force = 30.0;    ///< N: |F| is capped here (devices cap lower, per device)
+  TumourFeel tumour{};
+};
+
+struct Force {
+  Vec3 total = Vec3::Zero();   ///< N, acting on the probe; capped at max_force
+  Vec3 normal = Vec3::Zero();  ///< the normal spring
+  Vec3 shear = Vec3::Zero();   ///< the four shear springs
+  Vec3 tumour = Vec3::Zero();  ///< the tumours' springs
+};
+
+/// The force on a probe at q in contact (zero when !contact.inside). `tumours` are the
+/// body's own. Allocation-free.
+Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3& q,
+                    std::span<const mat::Tumour> tumours, const ForceOptions& options = {});
+
+/// The magnitude (N) a tumour adds along `outward` when the probe indents the column
+/// through foot point `foot` (surface at `radius` along `outward`) by `depth` (docs/model.md).
+double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& outward, double radius, double depth,
+                     const TumourFeel& feel);
+
+}  // namespace palpa::contact

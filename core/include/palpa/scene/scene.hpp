@@ -1,0 +1,71 @@
+#pragma once
+// A scene: the fitted bodies of a case with their tumours, and the probe query the
+// haptic loop runs against them (the deepest penetration wins; bodies whose bounding
+// box cannot contain the probe are skipped without a foot-point search).
+#include <string>
+#include <vector>
+
+#include "palpa/contact/force.hpp"
+#include "palpa/io/case_file.hpp"
+
+namespace palpa::scene {
+
+using contact::Vec3;
+
+/// Axis-aligned box that contains a body: SK's control points (convex hull property)
+/// grown by the largest radius control value, which bounds R(u, v).
+struct Bounds {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+  bool contains(const Vec3& q) const;
+};
+Bounds bounds_of(const mat::MatBody& body);
+
+struct SceneBody {
+  mat::MatBody body;
+  contact::FootPointSearch search;
+  Bounds bounds;
+  std::vector<mat::Tumour> tumours;
+};
+
+enum class FootPointMethod { Fast, Bisect };
+
+struct ProbeOptions {
+  FootPointMethod method = FootPointMethod::Fast;
+  int bisect_levels = 10;
+  contact::ForceOptions force{};
+};
+
+/// Per-probe memory between queries (warm starts), sized once for a scene.
+struct ProbeState {
+  std::vector<double> u, v;
+  std::vector<char> warm;
+};
+
+struct ProbeResult {
+  int body = -1;     ///< index of the body the probe penetrates deepest; -1 when outside all
+  int nearest = -1;  ///< index of the searched body with the largest depth (inside or not); -1 if all culled
+  contact::Contact contact;  ///< the contact with body `nearest`
+  contact::Force force;
+  int bodies_tested = 0;  ///< bodies whose foot point was searched (the rest were culled)
+};
+
+class Scene {
+ public:
+  /// Fits every body and places the tumours. Throws io::CaseError naming `source` and the
+  /// JSON pointer: a body that cannot be fitted (/bodies/K), a tumour outside its body
+  /// (/tumors/K).
+  static Scene build(const io::CaseFile& file, const std::string& source, const mat::FitOptions& options = {});
+
+  std::size_t size() const { return bodies_.size(); }
+  const SceneBody& body(std::size_t index) const { return bodies_[index]; }
+  ProbeState make_state() const;
+
+  /// Resolves the probe against every body; allocation-free given a sized state.
+  ProbeResult probe(const Vec3& q, ProbeState& state, const ProbeOptions& options = {}) const;
+
+ private:
+  std::vector<SceneBody> bodies_;
+};
+
+}  // namespace palpa::scene

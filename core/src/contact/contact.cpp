@@ -1,0 +1,34 @@
+#include "palpa/contact/contact.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+
+namespace palpa::contact {
+
+Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q) {
+  Contact c;
+  c.foot = foot;
+  std::array<double, mat::kSkeletonChannels> sk;
+  body.skeleton().evaluate(foot.u, foot.v, sk);
+  // A fit may dip a little below 0 beside a kink or at the closed boundary: read it as 0.
+  c.radius = std::max(0.0, sk[mat::kRadius]);
+  c.stiffness = std::max(0.0, sk[mat::kStiffness]);
+  const Vec3 n = foot.su.cross(foot.sv);
+  const Vec3 d = q - foot.point;
+  const double len = d.norm();
+  if (len > 0.0) {
+    c.outward = d / len;
+    c.side = d.dot(n) >= 0.0 ? 1 : -1;
+  } else {
+    const double nn = n.norm();
+    c.outward = nn > 0.0 ? Vec3(n / nn) : Vec3::UnitZ();
+    c.side = 1;
+  }
+  c.depth = c.radius - len;
+  c.inside = c.depth >= 0.0;
+  return c;
+}
+
+}  // namespace palpa::contact

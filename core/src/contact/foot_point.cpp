@@ -1,0 +1,268 @@
+#include "palpa/contact/foot_point.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace palpa::contact {
+namespace {
+
+using spline::derivative_index;
+
+// SK's xyz and its derivatives up to second order at (u, v).
+struct Local {
+  Vec3 s, su, sv, suu, suv, svv;
+};
+
+void local_frame(const spline::BSplineSurface& sk, double u, double v, Local& out) {
+  std::array<double, 9 * 3> d;  // filled by derivatives()
+  sk.derivatives(u, v, 2, d, 3);
+  const auto at = [&](int k, int l) { return Vec3(&d[derivative_index(k, l, 2, 3, 0)]); };
+  out.s = at(0, 0);
+  out.su = at(1, 0);
+  out.sv = at(0, 1);
+  out.suu = at(2, 0);
+  out.suv = at(1, 1);
+  out.svv = at(0, 2);
+}
+
+Vec3 position(const spline::BSplineSurface& sk, double u, double v) {
+  std::array<double, 3> p;
+  sk.evaluate(u, v, p, 3);
+  return {p[0], p[1], p[2]};
+}
+
+double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+
+FootPoint finish(const Local& l, double u, double v, const Vec3& q, int iterations, bool converged) {
+  FootPoint f;
+  f.u = u;
+  f.v = v;
+  f.point = l.s;
+  f.su = l.su;
+  f.sv = l.sv;
+  f.distance = (q - l.s).norm();
+  f.iterations = iterations;
+  f.converged = converged;
+  return f;
+}
+
+}  // namespace
+
+FootPoint newton_foot_point(const spline::BSplineSurface& skeleton, const Vec3& q, double u0, double v0,
+                            const NewtonOptions& options) {
+  double u = clamp01(u0);
+  double v = clamp01(v0);
+  Local l;
+  local_frame(skeleton, u, v, l);
+  Vec3 r = l.s - q;
+  double f = 0.5 * r.squaredNorm();
+  int it = 0;
+  bool converged = false;
+  for (; it < options.max_iterations; ++it) {
+    const double gu = l.su.dot(r);
+    const double gv = l.sv.dot(r);
+    // Active set: a parameter on its bound whose gradient points out of the box stays
+    // there, and the search continues along the edge (or stops at a corner).
+    const bool free_u = !((u <= 0.0 && gu > 0.0) || (u >= 1.0 && gu < 0.0));
+    const bool free_v = !((v <= 0.0 && gv > 0.0) || (v >= 1.0 && gv < 0.0));
+    if (!free_u && !free_v) {
+      converged = true;
+      break;
+    }
+    // Newton matrix; Gauss-Newton (J^T J, positive semi-definite) where the Hessian is not
+    // positive definite, e.g. beyond the skeleton's radius of curvature.
+    const double guu = l.su.dot(l.su);
+    const double guv = l.su.dot(l.sv);
+    const double gvv = l.sv.dot(l.sv);
+    double huu = guu + l.suu.dot(r);
+    double huv = guv + l.suv.dot(r);
+    double hvv = gvv + l.svv.dot(r);
+    const double levenberg = 1e-12 * (guu + gvv) + std::numeric_limits<double>::min();
+    double du = 0.0;
+    double dv = 0.0;
+    if (free_u && free_v) {
+      if (!(huu > 0.0 && huu * hvv - huv * huv > 0.0)) {
+        huu = guu + levenberg;
+        huv = guv;
+        hvv = gvv + levenberg;
+      }
+      const double det = huu * hvv - huv * huv;
+      du = -(hvv * gu - huv * gv) / det;
+      dv = -(huu * gv - huv * gu) / det;
+    } else if (free_u) {
+      du = -gu / (huu > 0.0 ? huu : guu + levenberg);
+    } else {
+      dv = -gv / (hvv > 0.0 ? hvv : gvv + levenberg);
+    }
+    if (!std::isfinite(du) || !std::isfinite(dv)) break;
+    // Converged when the full step is below the tolerance, or when what it could gain
+    // (-g.d/2 for a Newton step) is lost in the round-off of f: a line search there would
+    // only burn evaluations.
+    const double gain = -0.5 * (gu * du + gv * dv);
+    if (std::max(std::abs(du), std::abs(dv)) < options.parameter_tolerance ||
+        gain <= 1e-15 * f + std::numeric_limits<double>::min()) {
+      converged = true;
+      break;
+    }
+
+    // Backtracking on the projected step: f must decrease.
+    // The full step is taken almost always, so the trial point gets the whole local frame
+    // at once; later trials need only the position.
+    double alpha = 1.0;
+    bool accepted = false;
+    double un = clamp01(u + du);
+    double vn = clamp01(v + dv);
+    Local trial;
+    local_frame(skeleton, un, vn, trial);
+    double fn = 0.5 * (trial.s - q).squaredNorm();
+    if (fn < f) {
+      accepted = true;
+    } else {
+      for (int k = 1; k < 30; ++k) {
+        alpha *= 0.5;
+        un = clamp01(u + alpha * du);
+        vn = clamp01(v + alpha * dv);
+        fn = 0.5 * (position(skeleton, un, vn) - q).squaredNorm();
+        if (fn < f) {
+          accepted = true;
+          local_frame(skeleton, un, vn, trial);
+          break;
+        }
+      }
+    }
+    if (!accepted) {  // no decrease possible: a minimum to round-off
+      converged = true;
+      break;
+    }
+    const double step = std::max(std::abs(un - u), std::abs(vn - v));
+    u = un;
+    v = vn;
+    l = trial;
+    r = l.s - q;
+    f = 0.5 * r.squaredNorm();
+    if (step < options.parameter_tolerance) {
+      converged = true;
+      ++it;
+      break;
+    }
+  }
+  return finish(l, u, v, q, it, converged);
+}
+
+FootPoint bisect_foot_point(const spline::BSplineSurface& skeleton, const Vec3& q, int levels) {
+  double ub = 0.0;
+  double ue = 1.0;
+  double vb = 0.0;
+  double ve = 1.0;
+  std::array<double, 4 * 3> d;
+  int level = 0;
+  for (; level < levels; ++level) {
+    const double um = 0.5 * (ub + ue);
+    const double vm = 0.5 * (vb + ve);
+    skeleton.derivatives(um, vm, 1, d, 3);
+    const Vec3 w = q - Vec3(&d[derivative_index(0, 0, 1, 3, 0)]);
+    const double cu = w.dot(Vec3(&d[derivative_index(1, 0, 1, 3, 0)]));
+    const double cv = w.dot(Vec3(&d[derivative_index(0, 1, 1, 3, 0)]));
+    if (cu == 0.0 && cv == 0.0) {  // the normal passes through Q
+      ub = ue = um;
+      vb = ve = vm;
+      break;
+    }
+    (cu > 0.0 ? ub : ue) = um;
+    (cv > 0.0 ? vb : ve) = vm;
+  }
+  Local l;
+  local_frame(skeleton, 0.5 * (ub + ue), 0.5 * (vb + ve), l);
+  return finish(l, 0.5 * (ub + ue), 0.5 * (vb + ve), q, level, true);
+}
+
+FootPointSearch::FootPointSearch(const spline::BSplineSurface& skeleton, int samples_per_span)
+    : per_span_(std::max(1, samples_per_span)) {
+  resample(skeleton);
+}
+
+void FootPointSearch::resample(const spline::BSplineSurface& skeleton) {
+  // Parameters: every distinct knot plus per_span_ - 1 points inside each span, so a
+  // seed is never farther than a fraction of a span from the foot point.
+  auto params = [this](const std::vector<double>& knots) {
+    std::vector<double> out;
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+      if (!(knots[k + 1] > knots[k])) continue;
+      for (int s = 0; s < per_span_; ++s) out.push_back(knots[k] + (knots[k + 1] - knots[k]) * s / per_span_);
+    }
+    out.push_back(knots.back());
+    return out;
+  };
+  const auto us = params(skeleton.knots_u());
+  const auto vs = params(skeleton.knots_v());
+  uv_.clear();
+  points_.clear();
+  uv_.reserve(us.size() * vs.size());
+  points_.reserve(us.size() * vs.size());
+  for (double u : us) {
+    for (double v : vs) {
+      uv_.push_back({u, v});
+      points_.push_back(position(skeleton, u, v));
+    }
+  }
+}
+
+std::size_t FootPointSearch::nearest_sample(const Vec3& q, double& distance2) const {
+  std::size_t best = 0;
+  distance2 = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    const double d2 = (points_[k] - q).squaredNorm();
+    if (d2 < distance2) {
+      distance2 = d2;
+      best = k;
+    }
+  }
+  return best;
+}
+
+FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const Vec3& q,
+                                   const NewtonOptions& options) const {
+  // Newton from the three nearest samples: on a concave skeleton near its centre of
+  // curvature several basins are nearly as close, and the nearest sample alone can sit
+  // in the wrong one.
+  std::array<std::size_t, 3> best{0, 0, 0};
+  std::array<double, 3> d2{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::infinity()};
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    const double dk = (points_[k] - q).squaredNorm();
+    if (dk >= d2[2]) continue;
+    std::size_t slot = 2;
+    while (slot > 0 && dk < d2[slot - 1]) {
+      d2[slot] = d2[slot - 1];
+      best[slot] = best[slot - 1];
+      --slot;
+    }
+    d2[slot] = dk;
+    best[slot] = k;
+  }
+  FootPoint result;
+  result.distance = std::numeric_limits<double>::infinity();
+  for (std::size_t s = 0; s < best.size() && s < points_.size(); ++s) {
+    const auto f = newton_foot_point(skeleton, q, uv_[best[s]].u, uv_[best[s]].v, options);
+    if (f.distance < result.distance) result = f;
+  }
+  return result;
+}
+
+FootPoint FootPointSearch::closest_from(const spline::BSplineSurface& skeleton, const Vec3& q, double u0, double v0,
+                                        const NewtonOptions& options) const {
+  auto f = newton_foot_point(skeleton, q, u0, v0, options);
+  // A sample nearer than the Newton result proves the latter a local minimum only.
+  double d2 = 0.0;
+  const std::size_t k = nearest_sample(q, d2);
+  if (d2 < f.distance * f.distance) {
+    const auto g = newton_foot_point(skeleton, q, uv_[k].u, uv_[k].v, options);
+    if (g.distance < f.distance) f = g;
+  }
+  return f;
+}
+
+}  // namespace palpa::contact

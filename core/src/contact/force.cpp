@@ -1,0 +1,90 @@
+#include "palpa/contact/force.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace palpa::contact {
+namespace {
+
+double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+
+
+// Section 3.4's shear springs (docs/model.md): each ties the probe to the contour point
+// delta away in parameter space; its rest length is the distance from the undeformed
+// surface point over the foot point, so it is slack at depth 0, and it carries tension
+// only (a membrane cannot push).
+Vec3 shear_force(const mat::MatBody& body, const Contact& c, const Vec3& q, double delta) {
+  const Vec3 rest = c.foot.point + c.radius * c.outward;
+  const double u = c.foot.u;
+  const double v = c.foot.v;
+  const std::array<std::array<double, 2>, 4> at{{{clamp01(u - delta), v},
+                                                 {clamp01(u + delta), v},
+                                                 {u, clamp01(v - delta)},
+                                                 {u, clamp01(v + delta)}}};
+  const auto& contour = c.side > 0 ? body.top() : body.bottom();
+  Vec3 total = Vec3::Zero();
+  for (const auto& [un, vn] : at) {
+    // One basis serves the contour and the skeleton: they share parameters and knots.
+    const auto basis = body.skeleton().basis(un, vn);
+    std::array<double, 3> p;
+    contour.evaluate(basis, p, 0, 3);
+    double k_neighbour = 0.0;
+    body.skeleton().evaluate(basis, std::span<double>(&k_neighbour, 1), mat::kStiffness, 1);
+    const Vec3 neighbour(p[0], p[1], p[2]);
+    const Vec3 to = neighbour - q;
+    const double len = to.norm();
+    const double stretch = len - (neighbour - rest).norm();
+    if (!(stretch > 0.0) || !(len > 0.0)) continue;
+    const double k_eq = 0.5 * (std::max(0.0, k_neighbour) + c.stiffness);
+    total += (k_eq * stretch / len) * to;
+  }
+  return total;
+}
+
+// C1 onset: 0 below 0, a parabola across [0, width], then linear with slope 1.
+double smooth_ramp(double e, double width) {
+  if (e <= 0.0) return 0.0;
+  if (e >= width) return e - 0.5 * width;
+  return e * e / (2.0 * width);
+}
+
+}  // namespace
+
+double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& outward, double radius, double depth,
+                     const TumourFeel& feel) {
+  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - foot;
+  const double height = to_center.dot(outward);                 // tumour centre above the foot point
+  const double lateral = (to_center - height * outward).norm();  // and beside the column
+  double weight = 1.0;
+  if (lateral > tumour.radius) {
+    const double x = (lateral - tumour.radius) / feel.pad_radius;
+    weight = x >= 1.0 ? 0.0 : 1.0 - x * x * (3.0 - 2.0 * x);
+  }
+  if (weight <= 0.0) return 0.0;
+  const double above = radius - height - tumour.radius;  // tissue between the surface and the tumour
+  return weight * tumour.stiffness * smooth_ramp(depth - feel.reach * above, feel.ramp);
+}
+
+Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3& q,
+                    std::span<const mat::Tumour> tumours, const ForceOptions& options) {
+  Force f;
+  if (!contact.inside) return f;
+  f.normal = contact.stiffness * contact.depth * contact.outward;
+  if (options.shear) f.shear = shear_force(body, contact, q, options.shear_delta);
+  double tumour = 0.0;
+  for (const auto& t : tumours) {
+    tumour += tumour_spring(t, contact.foot.point, contact.outward, contact.radius, contact.depth, options.tumour);
+  }
+  f.tumour = tumour * contact.outward;
+  f.total = f.normal + f.shear + f.tumour;
+  const double magnitude = f.total.norm();
+  if (!std::isfinite(magnitude)) {
+    f = Force{};  // never hand a device a NaN
+  } else if (magnitude > options.max_force) {
+    f.total *= options.max_force / magnitude;
+  }
+  return f;
+}
+
+}  // namespace palpa::contact

@@ -1,0 +1,121 @@
+#include "palpa/scene/scene.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+
+namespace palpa::scene {
+
+bool Bounds::contains(const Vec3& q) const {
+  return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
+}
+
+Bounds bounds_of(const mat::MatBody& body) {
+  const auto& sk = body.skeleton();
+  Bounds b;
+  b.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  b.hi = -b.lo;
+  double r = 0.0;
+  for (int i = 0; i < sk.rows(); ++i) {
+    for (int j = 0; j < sk.cols(); ++j) {
+      const auto cp = sk.control_point(i, j);
+      const Vec3 p(cp[mat::kX], cp[mat::kY], cp[mat::kZ]);
+      b.lo = b.lo.cwiseMin(p);
+      b.hi = b.hi.cwiseMax(p);
+      r = std::max(r, cp[mat::kRadius]);
+    }
+  }
+  // Every point within R(u,v) of SK lies in the hull of the control points grown by the
+  // largest radius control value (both by the convex hull property of B-splines).
+  b.lo.array() -= r;
+  b.hi.array() += r;
+  return b;
+}
+
+Scene Scene::build(const io::CaseFile& file, const std::string& source, const mat::FitOptions& options) {
+  Scene scene;
+  scene.bodies_.reserve(file.bodies.size());
+  std::vector<io::Problem> problems;
+  for (std::size_t k = 0; k < file.bodies.size(); ++k) {
+    try {
+      auto body = mat::MatBody::fit(file.bodies[k], options);
+      contact::FootPointSearch search(body.skeleton());
+      const auto bounds = bounds_of(body);
+      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}});
+    } catch (const mat::FitError& e) {
+      problems.push_back({"/bodies/" + std::to_string(k), std::string("cannot fit: ") + e.what()});
+    }
+  }
+  if (!problems.empty()) throw io::CaseError(source, std::move(problems));
+
+  for (std::size_t k = 0; k < file.tumours.size(); ++k) {
+    const auto& t = file.tumours[k];
+    const auto it = std::find_if(scene.bodies_.begin(), scene.bodies_.end(),
+                                 [&](const SceneBody& b) { return b.body.id() == t.body; });
+    if (it == scene.bodies_.end()) {
+      problems.push_back({"/tumors/" + std::to_string(k) + "/body", "unknown body \"" + t.body + "\""});
+      continue;
+    }
+    // The tumour's sphere must lie inside the body: its centre at least its radius deep.
+    const Vec3 c(t.center[0], t.center[1], t.center[2]);
+    const auto contact = contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c);
+    if (contact.depth < t.radius) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "tumour (radius %.4g m) is not inside body \"%s\": its centre is %.4g m %s the surface", t.radius,
+                    t.body.c_str(), std::abs(contact.depth), contact.depth >= 0 ? "below" : "outside");
+      problems.push_back({"/tumors/" + std::to_string(k), text});
+      continue;
+    }
+    it->tumours.push_back(t);
+  }
+  if (!problems.empty()) throw io::CaseError(source, std::move(problems));
+  return scene;
+}
+
+ProbeState Scene::make_state() const {
+  ProbeState s;
+  s.u.assign(bodies_.size(), 0.0);
+  s.v.assign(bodies_.size(), 0.0);
+  s.warm.assign(bodies_.size(), 0);
+  return s;
+}
+
+ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& options) const {
+  ProbeResult result;
+  double best_depth = -std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const SceneBody& sb = bodies_[b];
+    if (!sb.bounds.contains(q)) {
+      state.warm[b] = 0;  // the next entry into this body starts cold
+      continue;
+    }
+    ++result.bodies_tested;
+    const auto& sk = sb.body.skeleton();
+    contact::FootPoint foot;
+    if (options.method == FootPointMethod::Bisect) {
+      foot = contact::bisect_foot_point(sk, q, options.bisect_levels);
+    } else if (state.warm[b] != 0) {
+      foot = sb.search.closest_from(sk, q, state.u[b], state.v[b]);
+    } else {
+      foot = sb.search.closest(sk, q);
+    }
+    state.u[b] = foot.u;
+    state.v[b] = foot.v;
+    state.warm[b] = 1;
+    const auto c = contact::make_contact(sb.body, foot, q);
+    if (c.depth > best_depth) {
+      best_depth = c.depth;
+      result.nearest = static_cast<int>(b);
+      result.contact = c;
+    }
+  }
+  if (result.nearest >= 0 && result.contact.inside) result.body = result.nearest;
+  if (result.body >= 0) {
+    const SceneBody& sb = bodies_[static_cast<std::size_t>(result.body)];
+    result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, options.force);
+  }
+  return result;
+}
+
+}  // namespace palpa::scene

@@ -1,0 +1,84 @@
+// Cost of one haptic query on the default case: foot point (cold, warm, the paper's
+// bisection) and the whole contact (foot point + penetration + force).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
+
+namespace {
+
+using palpa::contact::Vec3;
+
+const palpa::scene::Scene& default_scene() {
+  static const auto scene =
+      palpa::scene::Scene::build(palpa::io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  return scene;
+}
+
+// A palpation-like path: small circles drifting over the breast, pressing 5-20 mm in.
+std::vector<Vec3> palpation_path(std::size_t n) {
+  std::vector<Vec3> path;
+  const auto& body = default_scene().body(0).body;
+  std::vector<double> top(3);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * 1e-3;  // 1 kHz
+    const double u = 0.5 + 0.3 * std::sin(0.2 * t) + 0.02 * std::cos(6.0 * t);
+    const double v = 0.5 + 0.3 * std::cos(0.13 * t) + 0.02 * std::sin(6.0 * t);
+    body.top().evaluate(u, v, top);
+    const double press = 0.005 + 0.0075 * (1.0 + std::sin(1.7 * t));
+    path.emplace_back(top[0], top[1], top[2] - press);
+  }
+  return path;
+}
+
+void BM_FootPointWarm(benchmark::State& state) {
+  const auto& sb = default_scene().body(0);
+  const auto path = palpation_path(4096);
+  double u = 0.5;
+  double v = 0.5;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const auto f = sb.search.closest_from(sb.body.skeleton(), path[k++ & 4095], u, v);
+    u = f.u;
+    v = f.v;
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_FootPointWarm);
+
+void BM_FootPointCold(benchmark::State& state) {
+  const auto& sb = default_scene().body(0);
+  const auto path = palpation_path(4096);
+  std::size_t k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(sb.search.closest(sb.body.skeleton(), path[(k += 97) & 4095]));
+}
+BENCHMARK(BM_FootPointCold);
+
+void BM_FootPointBisect(benchmark::State& state) {
+  const auto& sb = default_scene().body(0);
+  const auto path = palpation_path(4096);
+  const int levels = static_cast<int>(state.range(0));
+  std::size_t k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(palpa::contact::bisect_foot_point(sb.body.skeleton(), path[k++ & 4095], levels));
+}
+BENCHMARK(BM_FootPointBisect)->Arg(10)->Arg(20);
+
+void BM_ProbeWarm(benchmark::State& state) {
+  const auto& scene = default_scene();
+  auto probe_state = scene.make_state();
+  palpa::scene::ProbeOptions options;
+  options.force.shear = state.range(0) != 0;
+  const auto path = palpation_path(4096);
+  std::size_t k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(scene.probe(path[k++ & 4095], probe_state, options));
+  state.SetLabel(options.force.shear ? "foot point + depth + force (shear on)" : "shear off");
+}
+BENCHMARK(BM_ProbeWarm)->Arg(1)->Arg(0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
