@@ -34,22 +34,24 @@ struct Font {
 };
 
 /// Sizes in pixels for the default 1000 x 650 image; larger images scale them up so a
-/// figure made for print keeps its proportions.
+/// figure made for print keeps its proportions. Small images shrink them less, or the
+/// Hershey font becomes unreadable.
 struct Style {
   double s;
   Font title, label, tick, legend;
-  double pad, tick_length, line_width, marker_radius;
+  double pad, tick_length, marker_radius;
+  int line_thickness;
 
   explicit Style(const LinePlot& plot)
-      : s(std::clamp(std::min(plot.width / 1000.0, plot.height / 650.0), 0.5, 4.0)),
+      : s(std::clamp(std::min(plot.width / 1000.0, plot.height / 650.0), 0.7, 4.0)),
         title{0.8 * s, thick(2)},
         label{0.6 * s, thick(1)},
         tick{0.5 * s, thick(1)},
         legend{0.5 * s, thick(1)},
         pad(12 * s),
         tick_length(6 * s),
-        line_width(2 * s),
-        marker_radius(4.5 * s) {}
+        marker_radius(4.5 * s),
+        line_thickness(thick(2)) {}
 
   int thick(double t) const { return std::max(1, cvRound(t * s)); }
 };
@@ -175,11 +177,13 @@ std::string format_tick(double v, double step) {
   if (scientific) {
     const int v_exponent = static_cast<int>(std::floor(std::log10(std::abs(v))));
     const int digits = std::clamp(v_exponent - step_exponent, 0, 15);
-    const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::scientific, digits).ptr;
+    const auto end =
+        std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::scientific, digits).ptr;
     return compact_scientific(std::string(buffer.data(), end));
   }
   const int decimals = std::clamp(-step_exponent, 0, 15);
-  const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::fixed, decimals).ptr;
+  const auto end =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::fixed, decimals).ptr;
   return std::string(buffer.data(), end);
 }
 
@@ -283,18 +287,18 @@ Layout layout_of(const LinePlot& plot) {
   const double area_height = plot.height - top - bottom;
   l.y_ticks = ticks_of(l.frame.y, area_height, 60 * st.s);
 
-  const double left = st.pad + (plot.y.label.empty() ? 0.0 : label.height + label.baseline + 10 * st.s) +
-                      widest_label(l.y_ticks, st.tick) + 6 * st.s + st.tick_length;
+  // Margins are capped so that absurd tick labels (a span of 1e-15 around 1) cannot
+  // squeeze the plot area away; such labels are cut at the image edge instead.
+  const double left =
+      std::min(0.4 * plot.width, st.pad + (plot.y.label.empty() ? 0.0 : label.height + label.baseline + 10 * st.s) +
+                                     widest_label(l.y_ticks, st.tick) + 6 * st.s + st.tick_length);
   // The last x tick label is centred on the right edge: leave room for half of it.
   const double estimated_width = plot.width - left - 30 * st.s;
   l.x_ticks = ticks_of(l.frame.x, estimated_width, 100 * st.s);
-  const double right = std::max(30 * st.s, widest_label(l.x_ticks, st.tick) / 2.0 + st.pad / 2.0);
+  const double right = std::clamp(widest_label(l.x_ticks, st.tick) / 2.0 + st.pad / 2.0, 30 * st.s, 0.2 * plot.width);
 
   l.frame.area = cv::Rect(cv::Point(cvRound(left), cvRound(top)),
                           cv::Point(plot.width - cvRound(right), plot.height - cvRound(bottom)));
-  if (l.frame.area.width < 20 || l.frame.area.height < 20) {
-    throw std::invalid_argument("palpa::plot: the labels leave no room for the plot area; make the image larger");
-  }
   return l;
 }
 
@@ -352,8 +356,10 @@ void draw_marker(cv::Mat& image, cv::Point2d c, Marker marker, const cv::Scalar&
     }
     case Marker::Cross: {
       const double h = r;
-      cv::line(image, fixed(c + cv::Point2d(-h, -h)), fixed(c + cv::Point2d(h, h)), colour, st.thick(2), cv::LINE_AA, kShift);
-      cv::line(image, fixed(c + cv::Point2d(-h, h)), fixed(c + cv::Point2d(h, -h)), colour, st.thick(2), cv::LINE_AA, kShift);
+      cv::line(image, fixed(c + cv::Point2d(-h, -h)), fixed(c + cv::Point2d(h, h)), colour, st.line_thickness,
+               cv::LINE_AA, kShift);
+      cv::line(image, fixed(c + cv::Point2d(-h, h)), fixed(c + cv::Point2d(h, -h)), colour, st.line_thickness,
+               cv::LINE_AA, kShift);
       break;
     }
   }
@@ -385,7 +391,8 @@ void draw_axes(cv::Mat& image, const Layout& l) {
     const int px = cvRound(a.x + *f * a.width);
     const double length = t.label.empty() ? st.tick_length / 2 : st.tick_length;
     cv::line(image, {px, a.y + a.height}, {px, a.y + a.height + cvRound(length)}, kInk, 1);
-    if (!t.label.empty()) put_text(image, t.label, {static_cast<double>(px), a.y + a.height + st.tick_length + 6 * st.s}, st.tick, 0.5, 0.0);
+    const cv::Point2d label_top(px, a.y + a.height + st.tick_length + 6 * st.s);
+    if (!t.label.empty()) put_text(image, t.label, label_top, st.tick, 0.5, 0.0);
   }
   for (const auto& t : l.y_ticks) {
     const auto f = l.frame.y.fraction(t.value);
@@ -393,7 +400,8 @@ void draw_axes(cv::Mat& image, const Layout& l) {
     const int py = cvRound(a.y + (1.0 - *f) * a.height);
     const double length = t.label.empty() ? st.tick_length / 2 : st.tick_length;
     cv::line(image, {a.x - cvRound(length), py}, {a.x, py}, kInk, 1);
-    if (!t.label.empty()) put_text(image, t.label, {a.x - st.tick_length - 6 * st.s, static_cast<double>(py)}, st.tick, 1.0, 0.5);
+    const cv::Point2d label_right(a.x - st.tick_length - 6 * st.s, py);
+    if (!t.label.empty()) put_text(image, t.label, label_right, st.tick, 1.0, 0.5);
   }
 }
 
@@ -408,7 +416,8 @@ void draw_titles(cv::Mat& image, const LinePlot& plot, const Layout& l) {
     // with it (min) so anti-aliased edges blend with the white background.
     const TextBox box = measure(plot.y.label, st.label);
     cv::Mat strip(box.height + box.baseline + 2, box.width + 2, CV_8UC3, kWhite);
-    cv::putText(strip, plot.y.label, {1, box.height + 1}, kFontFace, st.label.scale, kInk, st.label.thickness, cv::LINE_AA);
+    cv::putText(strip, plot.y.label, {1, box.height + 1}, kFontFace, st.label.scale, kInk, st.label.thickness,
+                cv::LINE_AA);
     cv::rotate(strip, strip, cv::ROTATE_90_COUNTERCLOCKWISE);
     const cv::Rect place(cvRound(st.pad), cvRound(a.y + a.height / 2.0 - strip.rows / 2.0), strip.cols, strip.rows);
     const cv::Rect visible = place & cv::Rect(0, 0, image.cols, image.rows);
@@ -434,13 +443,14 @@ void draw_series(cv::Mat& image, cv::Mat& ink, const LinePlot& plot, const Layou
       cv::Point2d a = *points[i - 1];
       cv::Point2d b = *points[i];
       if (!clip_segment(a, b, area)) continue;
-      cv::line(image, fixed(a), fixed(b), colour, st.thick(2), cv::LINE_AA, kShift);
-      cv::line(ink, fixed(a), fixed(b), 255, st.thick(2), cv::LINE_8, kShift);
+      cv::line(image, fixed(a), fixed(b), colour, st.line_thickness, cv::LINE_AA, kShift);
+      cv::line(ink, fixed(a), fixed(b), 255, st.line_thickness, cv::LINE_8, kShift);
     }
     // Markers are drawn whole when their centre is inside, so points on a decade line at
     // the edge of a log axis are not cut in half.
+    const cv::Rect2d reach(area.x - 0.5, area.y - 0.5, area.width + 1.0, area.height + 1.0);
     for (const auto& p : points) {
-      if (!p || !(area.x - 0.5 <= p->x && p->x <= area.br().x + 0.5 && area.y - 0.5 <= p->y && p->y <= area.br().y + 0.5)) continue;
+      if (!p || !reach.contains(*p)) continue;
       draw_marker(image, *p, series.marker, colour, st);
       cv::circle(ink, fixed(*p), cvRound(st.marker_radius * kOne), 255, cv::FILLED, cv::LINE_8, kShift);
     }
@@ -462,7 +472,8 @@ void draw_legend(cv::Mat& image, const cv::Mat& ink, const LinePlot& plot, const
   const double row = text.height + text.baseline + 8 * st.s;
   const double sample = 32 * st.s;
   const double inner = 10 * st.s;
-  const cv::Size2d size(inner + sample + inner + text_width + inner, inner + row * static_cast<double>(entries.size()) + inner - 8 * st.s);
+  const cv::Size2d size(inner + sample + inner + text_width + inner,
+                        inner + row * static_cast<double>(entries.size()) + inner - 8 * st.s);
 
   // The corner hiding the least data (ties: top right, top left, bottom right, bottom left).
   const cv::Rect2d a(l.frame.area);
@@ -475,7 +486,8 @@ void draw_legend(cv::Mat& image, const cv::Mat& ink, const LinePlot& plot, const
   }};
   const cv::Rect image_rect(0, 0, image.cols, image.rows);
   const auto pixels_of = [&](const cv::Rect2d& r) {
-    return cv::Rect(cv::Point(cvRound(r.x), cvRound(r.y)), cv::Point(cvRound(r.br().x), cvRound(r.br().y))) & image_rect;
+    return cv::Rect(cv::Point(cvRound(r.x), cvRound(r.y)), cv::Point(cvRound(r.br().x), cvRound(r.br().y))) &
+           image_rect;
   };
   cv::Rect2d box;
   int least = std::numeric_limits<int>::max();
@@ -498,7 +510,7 @@ void draw_legend(cv::Mat& image, const cv::Mat& ink, const LinePlot& plot, const
     const double y = box.y + inner + row * static_cast<double>(k) + text.height / 2.0;
     const cv::Point2d start(box.x + inner, y);
     const cv::Point2d end(start.x + sample, y);
-    if (series.line) cv::line(image, fixed(start), fixed(end), colour, st.thick(2), cv::LINE_AA, kShift);
+    if (series.line) cv::line(image, fixed(start), fixed(end), colour, st.line_thickness, cv::LINE_AA, kShift);
     draw_marker(image, (start + end) / 2.0, series.marker, colour, st);
     put_text(image, series.label, {end.x + inner, y}, st.legend, 0.0, 0.5);
   }

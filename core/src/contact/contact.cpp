@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace palpa::contact {
 
@@ -18,7 +19,9 @@ Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3
   const Vec3 n = foot.su.cross(foot.sv);
   const Vec3 d = q - foot.point;
   const double len = d.norm();
-  if (len > 0.0) {
+  // Within round-off of the skeleton the direction of Q - P is noise: use the normal.
+  const double on_skeleton = 64.0 * std::numeric_limits<double>::epsilon() * std::max(q.norm(), foot.point.norm());
+  if (len > on_skeleton) {
     c.outward = d / len;
     c.side = d.dot(n) >= 0.0 ? 1 : -1;
   } else {

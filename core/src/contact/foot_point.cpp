@@ -83,28 +83,42 @@ FootPoint newton_foot_point(const spline::BSplineSurface& skeleton, const Vec3& 
     const double levenberg = 1e-12 * (guu + gvv) + std::numeric_limits<double>::min();
     double du = 0.0;
     double dv = 0.0;
+    bool newton_step = true;
     if (free_u && free_v) {
       if (!(huu > 0.0 && huu * hvv - huv * huv > 0.0)) {
         huu = guu + levenberg;
         huv = guv;
         hvv = gvv + levenberg;
+        newton_step = false;
       }
       const double det = huu * hvv - huv * huv;
       du = -(hvv * gu - huv * gv) / det;
       dv = -(huu * gv - huv * gu) / det;
     } else if (free_u) {
-      du = -gu / (huu > 0.0 ? huu : guu + levenberg);
+      newton_step = huu > 0.0;
+      du = -gu / (newton_step ? huu : guu + levenberg);
     } else {
-      dv = -gv / (hvv > 0.0 ? hvv : gvv + levenberg);
+      newton_step = hvv > 0.0;
+      dv = -gv / (newton_step ? hvv : gvv + levenberg);
     }
     if (!std::isfinite(du) || !std::isfinite(dv)) break;
-    // Converged when the full step is below the tolerance, or when what it could gain
-    // (-g.d/2 for a Newton step) is lost in the round-off of f: a line search there would
-    // only burn evaluations.
-    const double gain = -0.5 * (gu * du + gv * dv);
-    if (std::max(std::abs(du), std::abs(dv)) < options.parameter_tolerance ||
-        gain <= 1e-15 * f + std::numeric_limits<double>::min()) {
+    // Converged when the full step is below the tolerance. When what the step could gain
+    // (-g.d/2) is below the round-off of f (f = |r|^2/2 with r = S - Q carries an error of
+    // about eps |S| |r|), f can no longer judge it, but the gradient (Su.r, Sv.r) is still
+    // accurate: take the step as it is and stop. This last step matters: the depth
+    // R(u,v) - |PQ| is first-order in (u, v) through R.
+    if (std::max(std::abs(du), std::abs(dv)) < options.parameter_tolerance) {
       converged = true;
+      break;
+    }
+    const double gain = -0.5 * (gu * du + gv * dv);
+    const double noise = 8.0 * std::numeric_limits<double>::epsilon() * l.s.norm() * r.norm();
+    if (newton_step && gain <= noise + std::numeric_limits<double>::min()) {
+      u = clamp01(u + du);
+      v = clamp01(v + dv);
+      local_frame(skeleton, u, v, l);
+      converged = true;
+      ++it;
       break;
     }
 
@@ -120,6 +134,23 @@ FootPoint newton_foot_point(const spline::BSplineSurface& skeleton, const Vec3& 
     double fn = 0.5 * (trial.s - q).squaredNorm();
     if (fn < f) {
       accepted = true;
+      // A Gauss-Newton step ignores the curvature of the skeleton, so where the distance
+      // is flat (a probe near the skeleton's centre of curvature) it undershoots by far:
+      // keep doubling it while f keeps falling.
+      if (!newton_step) {
+        for (int k = 0; k < 30; ++k) {
+          const double ue = clamp01(u + 2.0 * alpha * du);
+          const double ve = clamp01(v + 2.0 * alpha * dv);
+          if (ue == un && ve == vn) break;  // pinned by the box
+          const double fe = 0.5 * (position(skeleton, ue, ve) - q).squaredNorm();
+          if (!(fe < fn)) break;
+          alpha *= 2.0;
+          un = ue;
+          vn = ve;
+          fn = fe;
+        }
+        if (alpha > 1.0) local_frame(skeleton, un, vn, trial);
+      }
     } else {
       for (int k = 1; k < 30; ++k) {
         alpha *= 0.5;
@@ -198,6 +229,13 @@ void FootPointSearch::resample(const spline::BSplineSurface& skeleton) {
   };
   const auto us = params(skeleton.knots_u());
   const auto vs = params(skeleton.knots_v());
+  const auto widest = [](const std::vector<double>& p) {
+    double w = 0.0;
+    for (std::size_t k = 1; k < p.size(); ++k) w = std::max(w, p[k] - p[k - 1]);
+    return w;
+  };
+  spacing_u_ = widest(us);
+  spacing_v_ = widest(vs);
   uv_.clear();
   points_.clear();
   uv_.reserve(us.size() * vs.size());
@@ -210,27 +248,9 @@ void FootPointSearch::resample(const spline::BSplineSurface& skeleton) {
   }
 }
 
-std::size_t FootPointSearch::nearest_sample(const Vec3& q, double& distance2) const {
-  std::size_t best = 0;
-  distance2 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < points_.size(); ++k) {
-    const double d2 = (points_[k] - q).squaredNorm();
-    if (d2 < distance2) {
-      distance2 = d2;
-      best = k;
-    }
-  }
-  return best;
-}
-
-FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const Vec3& q,
-                                   const NewtonOptions& options) const {
-  // Newton from the three nearest samples: on a concave skeleton near its centre of
-  // curvature several basins are nearly as close, and the nearest sample alone can sit
-  // in the wrong one.
+std::array<std::size_t, 3> FootPointSearch::nearest_samples(const Vec3& q, std::array<double, 3>& d2) const {
   std::array<std::size_t, 3> best{0, 0, 0};
-  std::array<double, 3> d2{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                           std::numeric_limits<double>::infinity()};
+  d2.fill(std::numeric_limits<double>::infinity());
   for (std::size_t k = 0; k < points_.size(); ++k) {
     const double dk = (points_[k] - q).squaredNorm();
     if (dk >= d2[2]) continue;
@@ -243,10 +263,21 @@ FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const
     d2[slot] = dk;
     best[slot] = k;
   }
+  return best;
+}
+
+FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const Vec3& q,
+                                   const NewtonOptions& options) const {
+  // Newton from the three nearest samples: on a concave skeleton near its centre of
+  // curvature, or beyond a curved one's radius of curvature, several basins are nearly
+  // as close, and the nearest sample alone can sit in the wrong one.
+  std::array<double, 3> d2{};
+  const auto seeds = nearest_samples(q, d2);
   FootPoint result;
   result.distance = std::numeric_limits<double>::infinity();
-  for (std::size_t s = 0; s < best.size() && s < points_.size(); ++s) {
-    const auto f = newton_foot_point(skeleton, q, uv_[best[s]].u, uv_[best[s]].v, options);
+  for (std::size_t s = 0; s < seeds.size(); ++s) {
+    if (!std::isfinite(d2[s])) break;
+    const auto f = newton_foot_point(skeleton, q, uv_[seeds[s]].u, uv_[seeds[s]].v, options);
     if (f.distance < result.distance) result = f;
   }
   return result;
@@ -255,11 +286,21 @@ FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const
 FootPoint FootPointSearch::closest_from(const spline::BSplineSurface& skeleton, const Vec3& q, double u0, double v0,
                                         const NewtonOptions& options) const {
   auto f = newton_foot_point(skeleton, q, u0, v0, options);
-  // A sample nearer than the Newton result proves the latter a local minimum only.
-  double d2 = 0.0;
-  const std::size_t k = nearest_sample(q, d2);
-  if (d2 < f.distance * f.distance) {
-    const auto g = newton_foot_point(skeleton, q, uv_[k].u, uv_[k].v, options);
+  // The three nearest samples tell whether another basin may hold the global minimum.
+  // Newton runs again from each one that is nearer than the result or lies more than a
+  // sample spacing away from it in parameter space (where the distance is flat, a
+  // sample's offset in one direction can hide a better basin in the other); the nearest
+  // answer wins. While tracking, the nearest samples sit next to the foot point and this
+  // costs only the scan.
+  std::array<double, 3> d2{};
+  const auto seeds = nearest_samples(q, d2);
+  const FootPoint tracked = f;
+  for (std::size_t s = 0; s < seeds.size(); ++s) {
+    if (!std::isfinite(d2[s])) break;
+    const auto& seed = uv_[seeds[s]];
+    const bool elsewhere = std::abs(seed.u - tracked.u) > spacing_u_ || std::abs(seed.v - tracked.v) > spacing_v_;
+    if (!(d2[s] < tracked.distance * tracked.distance) && !elsewhere) continue;
+    const auto g = newton_foot_point(skeleton, q, seed.u, seed.v, options);
     if (g.distance < f.distance) f = g;
   }
   return f;

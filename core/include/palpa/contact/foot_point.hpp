@@ -2,6 +2,7 @@
 // The foot point of a probe on the skeleton SK (paper section 3.1): the (u, v) whose
 // skeleton normal passes through the probe Q, i.e. the skeleton point closest to Q.
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "palpa/spline/bspline_surface.hpp"
@@ -65,10 +66,13 @@ class FootPointSearch {
     double u;
     double v;
   };
-  /// Index of the sample nearest to q, and its squared distance.
-  std::size_t nearest_sample(const Vec3& q, double& distance2) const;
+  /// The three samples nearest to q (nearest first) and their squared distances
+  /// (infinite where there are fewer samples).
+  std::array<std::size_t, 3> nearest_samples(const Vec3& q, std::array<double, 3>& distance2) const;
 
   int per_span_;
+  double spacing_u_ = 0.0;  ///< widest gap between sample parameters
+  double spacing_v_ = 0.0;
   std::vector<Sample> uv_;
   std::vector<Vec3> points_;
 };

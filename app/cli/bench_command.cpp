@@ -1,0 +1,39 @@
+// palpa-cli bench SUITE: measured speed against accuracy, with CSV and PNG output.
+#include <cstdio>
+#include <memory>
+
+#include "bench_accuracy.hpp"
+#include "commands.hpp"
+
+namespace palpa::cli {
+
+Command add_bench_command(CLI::App& parent) {
+  auto o = std::make_shared<AccuracyOptions>();
+  auto out = std::make_shared<std::string>("bench-results");
+  auto* app = parent.add_subcommand("bench", "Benchmarks that report run time together with the error it buys.");
+  app->require_subcommand(1);
+  auto* accuracy = app->add_subcommand(
+      "accuracy", "Foot-point search: time per query vs depth error for the paper's bisection (k = 6..20) and the "
+                  "fast method (cold, warm) on flat, curved, concave and wavy bodies, against a high-precision "
+                  "reference. Writes accuracy.csv and accuracy.png into --out.");
+  accuracy->add_option("--probes", o->probes, "probe positions per body (a palpation-like path); default 2000")
+      ->check(CLI::Range(10, 1000000));
+  accuracy->add_option("--seed", o->seed, "random seed of the paths; default 1");
+  accuracy->add_option("--out", *out, "output folder; default bench-results");
+  return {app, [o, out, accuracy] {
+            if (!accuracy->parsed()) return static_cast<int>(kBadInput);
+            o->out = *out;
+            const auto rows = run_accuracy_benchmark(*o);
+            std::printf("%-8s %-10s %6s %12s %16s %16s %12s %7s\n", "body", "method", "levels", "ns/query",
+                        "depth err max m", "depth err med m", "param err", "inside!");
+            for (const auto& r : rows) {
+              std::printf("%-8s %-10s %6d %12.0f %16.3e %16.3e %12.3e %7d\n", r.body.c_str(), r.method.c_str(),
+                          r.levels, r.ns_per_query, r.depth_error_max, r.depth_error_median, r.param_error_max,
+                          r.inside_wrong);
+            }
+            std::printf("wrote %s and %s\n", (o->out / "accuracy.csv").c_str(), (o->out / "accuracy.png").c_str());
+            return static_cast<int>(kOk);
+          }};
+}
+
+}  // namespace palpa::cli
