@@ -246,6 +246,17 @@ void FootPointSearch::resample(const spline::BSplineSurface& skeleton) {
       points_.push_back(position(skeleton, u, v));
     }
   }
+  // Every skeleton point lies within reach_ of some sample: half the largest gap between
+  // neighbouring samples, with a margin for the bulge of the arc over its chord.
+  double gap = 0.0;
+  for (std::size_t i = 0; i < us.size(); ++i) {
+    for (std::size_t j = 0; j < vs.size(); ++j) {
+      const auto& p = points_[i * vs.size() + j];
+      if (i + 1 < us.size()) gap = std::max(gap, (points_[(i + 1) * vs.size() + j] - p).norm());
+      if (j + 1 < vs.size()) gap = std::max(gap, (points_[i * vs.size() + j + 1] - p).norm());
+    }
+  }
+  reach_ = 0.75 * gap * std::sqrt(2.0);
 }
 
 std::array<std::size_t, 3> FootPointSearch::nearest_samples(const Vec3& q, std::array<double, 3>& d2) const {
@@ -299,7 +310,9 @@ FootPoint FootPointSearch::closest_from(const spline::BSplineSurface& skeleton, 
     if (!std::isfinite(d2[s])) break;
     const auto& seed = uv_[seeds[s]];
     const bool elsewhere = std::abs(seed.u - tracked.u) > spacing_u_ || std::abs(seed.v - tracked.v) > spacing_v_;
-    if (!(d2[s] < tracked.distance * tracked.distance) && !elsewhere) continue;
+    // Nothing within reach_ of a sample can be nearer than (its distance - reach_).
+    const bool could_be_nearer = std::sqrt(d2[s]) - reach_ < tracked.distance;
+    if (!(d2[s] < tracked.distance * tracked.distance) && !(elsewhere && could_be_nearer)) continue;
     const auto g = newton_foot_point(skeleton, q, seed.u, seed.v, options);
     if (g.distance < f.distance) f = g;
   }

@@ -24,7 +24,9 @@ struct FootPoint {
 
 struct NewtonOptions {
   int max_iterations = 30;
-  /// Stop when a step moves (u, v) by less than this (parameter units).
+  /// Stop when a step moves (u, v) by less than this (parameter units). Newton also stops
+  /// (after taking that step) when the decrease a Newton step promises is below the
+  /// round-off of the squared distance; in practice (u, v) then sits within ~1e-13.
   double parameter_tolerance = 1e-13;
 };
 
@@ -73,6 +75,7 @@ class FootPointSearch {
   int per_span_;
   double spacing_u_ = 0.0;  ///< widest gap between sample parameters
   double spacing_v_ = 0.0;
+  double reach_ = 0.0;  ///< m: every skeleton point lies within this of a sample
   std::vector<Sample> uv_;
   std::vector<Vec3> points_;
 };

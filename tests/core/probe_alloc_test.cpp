@@ -1,0 +1,57 @@
+// The haptic thread's query must not allocate: Scene::probe is run with a counting global
+// operator new (this test binary only) and must not touch it.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return ::operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace palpa::scene {
+namespace {
+
+TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  ASSERT_FALSE(scene.body(0).tumours.empty());
+  auto state = scene.make_state();
+  ProbeOptions fast;
+  ProbeOptions bisect;
+  bisect.method = FootPointMethod::Bisect;
+  const long before = g_allocations.load();
+  double checksum = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    // In and out of the body (cold starts after leaving its box), over the tumour, far away.
+    const double t = 0.01 * k;
+    const Vec3 q(0.06 * std::sin(t), 0.07 * std::cos(0.7 * t), 0.03 + 0.04 * std::sin(2.3 * t));
+    const auto r = scene.probe(k % 50 == 0 ? Vec3(5.0, 5.0, 5.0) : q, state, k % 7 == 0 ? bisect : fast);
+    checksum += r.force.total.norm();
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(checksum, 0.0);  // some queries were in contact
+
+  // The counter does see allocations: a fresh state allocates.
+  const long control = g_allocations.load();
+  const auto fresh = scene.make_state();
+  EXPECT_GT(g_allocations.load(), control);
+  EXPECT_EQ(fresh.warm.size(), scene.size());
+}
+
+}  // namespace
+}  // namespace palpa::scene
