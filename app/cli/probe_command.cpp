@@ -16,6 +16,7 @@ struct ProbeCommandOptions {
   std::string case_path;
   std::string points_path;
   bool no_shear = false;
+  bool path = false;
   std::string method = "fast";
   int bisect_levels = 10;
   double max_force = contact::ForceOptions{}.max_force;
@@ -45,6 +46,7 @@ int run_probe(const ProbeCommandOptions& o) {
   options.force.shear = !o.no_shear;
   options.force.max_force = o.max_force;
   options.force.shear_delta = o.shear_delta;
+  options.remember_side = o.path;
   auto state = scene->make_state();
 
   std::printf("x,y,z,inside,body,u,v,depth,fx,fy,fz\n");
@@ -74,6 +76,9 @@ Command add_probe_command(CLI::App& parent) {
   app->add_option("CASE", o->case_path, "case file (JSON)")->required();
   app->add_option("--points", o->points_path, "CSV with header 'x,y,z' (m), one probe position per row")->required();
   app->add_flag("--no-shear", o->no_shear, "leave out the four shear springs (normal spring and tumours only)");
+  app->add_flag("--path", o->path,
+                "treat the rows as one continuous probe path: a press that goes past the skeleton keeps being pushed "
+                "back out of the side it entered (without it, every row is an independent query)");
   app->add_option("--method", o->method, "foot-point search: fast (safeguarded Newton) or bisect (the paper's)")
       ->check(CLI::IsMember({"fast", "bisect"}))
       ->default_str("fast");

@@ -340,11 +340,55 @@ TEST(Scene, BodiesTestedAreExactlyThoseWhoseBoxHoldsTheProbe) {
   EXPECT_GT(multiple, 50);
 }
 
+TEST(Scene, APressPastTheSkeletonKeepsPushingBackOutOfItsEntrySide) {
+  // Pressing straight down through a flat body (skeleton z = 0, radius r0 at the centre):
+  // with the entry side remembered the press depth keeps growing past the skeleton and
+  // the force stays upwards and continuous; as independent queries it flips at z = 0.
+  const Flat a{"a"};
+  const Scene scene = build(case_json({a.to_json()}, {}));
+  ProbeOptions path;
+  path.force.shear = false;
+  path.remember_side = true;
+  ProbeOptions independent = path;
+  independent.remember_side = false;
+  ProbeState state = scene.make_state();
+  ProbeState fresh = scene.make_state();
+  double previous = 0.0;
+  bool flipped = false;
+  bool entered = false;
+  bool left = false;
+  for (double z = 0.03; z > -0.03; z -= 0.0005) {
+    const Vec3 q(0.001, -0.002, z);
+    const auto r = scene.probe(q, state, path);
+    const auto s = scene.probe(q, fresh, independent);
+    if (r.body < 0) {
+      if (!entered) continue;
+      EXPECT_LT(z, 0.0) << "the press is inside until it leaves through the far side";
+      left = true;
+      break;
+    }
+    entered = true;
+    EXPECT_GT(r.force.total.z(), previous - 1e-12) << "z " << z;  // grows monotonically, upwards
+    EXPECT_NEAR(r.contact.outward.z(), 1.0, 1e-9);
+    if (z < -1e-9) {
+      EXPECT_NEAR(r.contact.depth, r.contact.radius + std::abs(z), 1e-9) << "depth from the entry surface";
+      flipped = flipped || s.force.total.z() < 0.0;
+    }
+    previous = r.force.total.z();
+  }
+  EXPECT_TRUE(entered && left);
+  EXPECT_TRUE(flipped) << "independent queries flip past the skeleton (the behaviour the memory prevents)";
+}
+
 TEST(Scene, WarmQueriesGiveTheSameAnswerAsColdOnes) {
   const Flat a{"a"};
   const Flat b{"b", 0.03, 0.0, 0.012, 0.04, 0.015, 400.0};
   const Scene scene = build(case_json({a.to_json(), b.to_json()}, {tumour_json("a", {0.0, 0.0, 0.002}, 0.004, 1500.0)}));
   ProbeState warm = scene.make_state();
+  // Warm starts only: the entry-side memory (tested on its own) would legitimately make a
+  // path that crosses a skeleton differ from a fresh query.
+  ProbeOptions independent;
+  independent.remember_side = false;
   std::mt19937_64 rng(23);
   std::normal_distribution<double> step(0.0, 0.002);
   Vec3 q(0.0, 0.0, 0.01);
@@ -352,8 +396,8 @@ TEST(Scene, WarmQueriesGiveTheSameAnswerAsColdOnes) {
     q += Vec3(step(rng), step(rng), step(rng));
     q = q.cwiseMax(Vec3(-0.07, -0.07, -0.04)).cwiseMin(Vec3(0.09, 0.07, 0.05));
     ProbeState cold = scene.make_state();
-    const ProbeResult rc = scene.probe(q, cold);
-    const ProbeResult rw = scene.probe(q, warm);
+    const ProbeResult rc = scene.probe(q, cold, independent);
+    const ProbeResult rw = scene.probe(q, warm, independent);
     ASSERT_EQ(rw.body, rc.body) << "step " << n << " probe " << q.transpose();
     EXPECT_EQ(rw.bodies_tested, rc.bodies_tested);
     if (rc.body < 0) continue;

@@ -78,6 +78,7 @@ ProbeState Scene::make_state() const {
   s.u.assign(bodies_.size(), 0.0);
   s.v.assign(bodies_.size(), 0.0);
   s.warm.assign(bodies_.size(), 0);
+  s.entry_side.assign(bodies_.size(), 0);
   return s;
 }
 
@@ -88,6 +89,7 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
     const SceneBody& sb = bodies_[b];
     if (!sb.bounds.contains(q)) {
       state.warm[b] = 0;  // the next entry into this body starts cold
+      state.entry_side[b] = 0;
       continue;
     }
     ++result.bodies_tested;
@@ -103,7 +105,19 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
     state.u[b] = foot.u;
     state.v[b] = foot.v;
     state.warm[b] = 1;
-    const auto c = contact::make_contact(sb.body, foot, q);
+    auto c = contact::make_contact(sb.body, foot, q);
+    if (options.remember_side) {
+      if (!c.inside) {
+        state.entry_side[b] = 0;
+      } else if (state.entry_side[b] == 0) {
+        state.entry_side[b] = static_cast<signed char>(c.side);
+      } else if (state.entry_side[b] != c.side) {
+        // Past the skeleton: measure the press from the surface it entered through.
+        c.depth = c.radius + c.foot.distance;
+        c.outward = -c.outward;
+        c.side = state.entry_side[b];
+      }
+    }
     if (c.depth > best_depth) {
       best_depth = c.depth;
       result.nearest = static_cast<int>(b);

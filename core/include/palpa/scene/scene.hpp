@@ -34,12 +34,19 @@ struct ProbeOptions {
   FootPointMethod method = FootPointMethod::Fast;
   int bisect_levels = 10;
   contact::ForceOptions force{};
+  /// Treat successive queries as one probe path and remember the side of the skeleton a
+  /// press entered from: a press that goes past the skeleton keeps being pushed back out
+  /// of the side it entered (depth R + |PQ|), instead of flipping to the far surface
+  /// (docs/model.md, "Pressing past the skeleton"). Off by default, so that unrelated
+  /// queries stay independent; the haptic engine and `palpa-cli probe --path` turn it on.
+  bool remember_side = false;
 };
 
-/// Per-probe memory between queries (warm starts), sized once for a scene.
+/// Per-probe memory between queries (warm starts, entry sides), sized once for a scene.
 struct ProbeState {
   std::vector<double> u, v;
   std::vector<char> warm;
+  std::vector<signed char> entry_side;  ///< +1/-1 while a press is in the body, 0 otherwise
 };
 
 struct ProbeResult {
