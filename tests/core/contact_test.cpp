@@ -696,7 +696,7 @@ TEST(Contact, FlatDepthIsRadiusMinusHeight) {
   }
 }
 
-TEST(Contact, FlatInsideOutsideIsNeverWrongFartherThanTwoNanometresFromTheSurface) {
+TEST(Contact, FlatInsideOutsideIsNeverWrongFartherThanOneNanometreFromTheSurface) {
   const MatBody& body = flat();
   const FootPointSearch search(body.skeleton());
   std::mt19937_64 rng(10);
@@ -706,8 +706,8 @@ TEST(Contact, FlatInsideOutsideIsNeverWrongFartherThanTwoNanometresFromTheSurfac
     const double y = xy(rng);
     const double r = flat_radius(x, y);
     for (double sign : {1.0, -1.0}) {
-      const Vec3 in(x, y, sign * (r - 2e-9));
-      const Vec3 out(x, y, sign * (r + 2e-9));
+      const Vec3 in(x, y, sign * (r - 1e-9));
+      const Vec3 out(x, y, sign * (r + 1e-9));
       const Contact ci = make_contact(body, search.closest(body.skeleton(), in), in);
       const Contact co = make_contact(body, search.closest(body.skeleton(), out), out);
       EXPECT_TRUE(ci.inside) << in.transpose() << " depth " << ci.depth;
