@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "bench_accuracy.hpp"
+#include "bench_dynamics.hpp"
 #include "commands.hpp"
 
 namespace palpa::cli {
@@ -20,7 +21,15 @@ Command add_bench_command(CLI::App& parent) {
       ->check(CLI::Range(10, 1000000));
   accuracy->add_option("--seed", o->seed, "random seed of the paths; default 1");
   accuracy->add_option("--out", *out, "output folder; default bench-results");
-  return {app, [o, out, accuracy] {
+  auto dyn_out = std::make_shared<std::string>("bench-results");
+  auto* dynamics = app->add_subcommand(
+      "dynamics", "Control-point springs: error vs time step for the exact integrator and the Euler family against "
+                  "the analytic damped oscillator; landing error, control-point amplification and overshoot for the "
+                  "p' x q' choices of control-point modification. Writes dynamics.csv, modification.csv and "
+                  "dynamics.png into --out.");
+  dynamics->add_option("--out", *dyn_out, "output folder; default bench-results");
+  return {app, [o, out, accuracy, dynamics, dyn_out] {
+            if (dynamics->parsed()) return run_bench_dynamics(*dyn_out);
             if (!accuracy->parsed()) return static_cast<int>(kBadInput);
             o->out = *out;
             const auto rows = run_accuracy_benchmark(*o);

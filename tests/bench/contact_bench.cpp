@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "palpa/deform/deformed_body.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 
@@ -78,6 +79,53 @@ void BM_ProbeWarm(benchmark::State& state) {
   state.SetLabel(options.force.shear ? "foot point + depth + force (shear on)" : "shear off");
 }
 BENCHMARK(BM_ProbeWarm)->Arg(1)->Arg(0);
+
+// One haptic tick with dynamics: probe (foot point, depth, force) on the rest body, press
+// the drawn body onto the probe, advance its springs by 1 ms. Arg: grid points per side
+// of a breast-like dome (0: the default case itself, 9 x 11).
+void BM_HapticTickWithDynamics(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  palpa::io::CaseFile file = palpa::io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json");
+  if (n > 0) {
+    auto& g = file.bodies[0];
+    g.rows = n;
+    g.cols = n;
+    g.medial.clear();
+    g.radius.clear();
+    g.stiffness.clear();
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double s = -1.0 + 2.0 * i / (n - 1);
+        const double t = -1.0 + 2.0 * j / (n - 1);
+        const double f = (1 - s * s) * (1 - t * t);
+        g.medial.push_back({0.07 * s, 0.08 * t, 0.025 * f});
+        g.radius.push_back(0.025 * f);
+        g.stiffness.push_back(120.0 + 180.0 * f);
+      }
+    }
+  }
+  const auto scene = palpa::scene::Scene::build(file, "bench");
+  palpa::deform::DeformedBody drawn(scene.body(0).body);
+  auto probe_state = scene.make_state();
+  palpa::scene::ProbeOptions options;
+  options.remember_side = true;
+  const auto path = palpation_path(4096);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const auto& q = path[k++ & 4095];
+    const auto r = scene.probe(q, probe_state, options);
+    if (r.body == 0) {
+      drawn.press(r.contact, q);
+    } else {
+      drawn.release();
+    }
+    drawn.step(1e-3);
+    benchmark::DoNotOptimize(r);
+  }
+  const auto& sk = scene.body(0).body.skeleton();
+  state.counters["control_points"] = sk.rows() * sk.cols();
+}
+BENCHMARK(BM_HapticTickWithDynamics)->Arg(0)->Arg(16)->Arg(24);
 
 }  // namespace
 

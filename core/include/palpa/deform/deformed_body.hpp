@@ -1,0 +1,77 @@
+#pragma once
+// A body as drawn: its rest model plus the displacements of its control points, pressed
+// by the probe and springing back (paper sections 3.2 and 3.3; docs/model.md).
+#include <cstdint>
+#include <vector>
+
+#include "palpa/contact/contact.hpp"
+#include "palpa/deform/oscillator.hpp"
+#include "palpa/mat/mat_body.hpp"
+
+namespace palpa::deform {
+
+enum class Scheme {
+  SkeletonMoves,  ///< (a) the skeleton moves by the press and both contours follow
+  Compression,    ///< (b) the skeleton moves by g * depth, the radius shrinks by (1 - g) * depth
+};
+
+struct DeformOptions {
+  Scheme scheme = Scheme::Compression;
+  double g = 0.5;  ///< share of the press taken by the skeleton in scheme (b); 0.5 keeps the far side still
+  /// The p' x q' most influential control points a press moves (0: all (p+1) x (q+1)).
+  int influence_u = 0;
+  int influence_v = 0;
+  bool dynamics = true;  ///< false: released points return to rest at once
+  /// A body sleeps (no integration) once every displacement is below this (m) and every
+  /// velocity below sleep_velocity (m/s); it is then put exactly at rest.
+  double sleep_displacement = 1e-7;
+  double sleep_velocity = 1e-5;
+};
+
+class DeformedBody {
+ public:
+  /// Sizes everything once: press() and step() allocate nothing afterwards.
+  explicit DeformedBody(const mat::MatBody& rest, const DeformOptions& options = {});
+
+  const mat::MatBody& rest() const { return *rest_; }
+  const spline::BSplineSurface& skeleton() const { return skeleton_; }
+  const spline::BSplineSurface& top() const { return top_; }
+  const spline::BSplineSurface& bottom() const { return bottom_; }
+  const DeformOptions& options() const { return options_; }
+
+  /// Moves the surface under the probe onto the probe (the contact is computed on the rest
+  /// model, so the force it gives is the force for what is drawn). The pressed control
+  /// points are held there until the next press or release.
+  void press(const contact::Contact& contact, const contact::Vec3& q);
+  /// The probe left: every control point springs back.
+  void release();
+  /// Advances the free control points by dt seconds; a body at rest does nothing.
+  void step(double dt);
+
+  bool awake() const { return awake_; }
+  /// Increments whenever the drawn surfaces change (tessellation redoes only changed bodies).
+  std::uint64_t version() const { return version_; }
+  /// Largest control-point displacement from rest (m), over skeleton and contours.
+  double max_displacement() const;
+  /// Kinetic + spring energy of the control points (J), for tests and benchmarks.
+  double energy() const;
+
+ private:
+  static constexpr int kComponents = 10;  // SK x y z r, top x y z, bottom x y z
+  void write_back(std::size_t point);
+  void rebuild_steps(double dt);
+
+  const mat::MatBody* rest_;
+  DeformOptions options_;
+  spline::BSplineSurface skeleton_, top_, bottom_;
+  int rows_, cols_;
+  std::vector<double> x_, v_;          // per control point, kComponents each: displacement, velocity
+  std::vector<double> k_, b_, m_;      // per control point
+  std::vector<OscillatorStep> steps_;  // per control point, for step_dt_
+  std::vector<char> held_;             // pressed this tick: positioned, not integrated
+  double step_dt_ = -1.0;
+  bool awake_ = false;
+  std::uint64_t version_ = 0;
+};
+
+}  // namespace palpa::deform

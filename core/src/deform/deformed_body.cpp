@@ -1,0 +1,208 @@
+#include "palpa/deform/deformed_body.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "palpa/deform/control_point_modification.hpp"
+
+namespace palpa::deform {
+namespace {
+
+// Components of a control point's displacement: the skeleton's x y z and radius, then the
+// top contour's x y z, then the bottom contour's x y z.
+constexpr int kSkeletonXyz = 0;
+constexpr int kRadius = 3;
+constexpr int kTop = 4;
+constexpr int kBottom = 7;
+
+std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+}  // namespace
+
+DeformedBody::DeformedBody(const mat::MatBody& rest, const DeformOptions& options)
+    : rest_(&rest),
+      options_(options),
+      skeleton_(rest.skeleton()),
+      top_(rest.top()),
+      bottom_(rest.bottom()),
+      rows_(rest.skeleton().rows()),
+      cols_(rest.skeleton().cols()) {
+  const std::size_t n = idx(rows_ * cols_);
+  x_.assign(n * kComponents, 0.0);
+  v_.assign(n * kComponents, 0.0);
+  k_.resize(n);
+  b_.resize(n);
+  m_.resize(n);
+  steps_.resize(n);
+  held_.assign(n, 0);
+  // Each control point's spring, damper and mass come from the skeleton's material
+  // channels at that control point (a fit may dip slightly below 0: clamp).
+  for (int i = 0; i < rows_; ++i) {
+    for (int j = 0; j < cols_; ++j) {
+      const auto cp = rest.skeleton().control_point(i, j);
+      const std::size_t p = idx(i * cols_ + j);
+      k_[p] = std::max(0.0, cp[mat::kStiffness]);
+      b_[p] = std::max(0.0, cp[mat::kDamping]);
+      m_[p] = std::max(1e-9, cp[mat::kMass]);
+    }
+  }
+}
+
+void DeformedBody::write_back(std::size_t point) {
+  const int i = static_cast<int>(point) / cols_;
+  const int j = static_cast<int>(point) % cols_;
+  const double* x = &x_[point * kComponents];
+  const auto rs = rest_->skeleton().control_point(i, j);
+  const auto rt = rest_->top().control_point(i, j);
+  const auto rb = rest_->bottom().control_point(i, j);
+  auto s = skeleton_.control_point(i, j);
+  auto t = top_.control_point(i, j);
+  auto b = bottom_.control_point(i, j);
+  for (std::size_t c = 0; c < 3; ++c) {
+    s[c] = rs[c] + x[kSkeletonXyz + c];
+    t[c] = rt[c] + x[kTop + c];
+    b[c] = rb[c] + x[kBottom + c];
+  }
+  s[mat::kRadius] = rs[mat::kRadius] + x[kRadius];
+}
+
+void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q) {
+  const double u = contact.foot.u;
+  const double v = contact.foot.v;
+  const double depth = std::max(0.0, contact.depth);
+  const double g = options_.scheme == Scheme::SkeletonMoves ? 1.0 : options_.g;
+  const contact::Vec3 n = contact.outward;
+
+  // Targets: displacements from rest at (u, v). The near contour lands exactly on the
+  // probe; the skeleton takes g of the press and the radius the rest (scheme (b); scheme
+  // (a) is g = 1); the far contour then moves by (1 - 2g) depth n (0 for g = 1/2).
+  const auto basis = rest_->skeleton().basis(u, v);
+  const bool top_near = contact.side > 0;
+  std::array<double, 3> rest_near{};
+  (top_near ? rest_->top() : rest_->bottom()).evaluate(basis, rest_near, 0, 3);
+  std::array<double, kComponents> target{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    target[kSkeletonXyz + c] = -g * depth * n[static_cast<Eigen::Index>(c)];
+    const double near = q[static_cast<Eigen::Index>(c)] - rest_near[c];
+    const double far = (1.0 - 2.0 * g) * depth * n[static_cast<Eigen::Index>(c)];
+    target[kTop + c] = top_near ? near : far;
+    target[kBottom + c] = top_near ? far : near;
+  }
+  target[kRadius] = -(1.0 - g) * depth;
+
+  // What is displaced there now (the drawn minus the rest surfaces at (u, v)).
+  std::array<double, kComponents> now{};
+  std::array<double, 4> a{};
+  std::array<double, 4> r{};
+  skeleton_.evaluate(basis, a, 0, 4);
+  rest_->skeleton().evaluate(basis, r, 0, 4);
+  for (std::size_t c = 0; c < 4; ++c) now[c] = a[c] - r[c];
+  top_.evaluate(basis, a, 0, 3);
+  rest_->top().evaluate(basis, r, 0, 3);
+  for (std::size_t c = 0; c < 3; ++c) now[kTop + c] = a[c] - r[c];
+  bottom_.evaluate(basis, a, 0, 3);
+  rest_->bottom().evaluate(basis, r, 0, 3);
+  for (std::size_t c = 0; c < 3; ++c) now[kBottom + c] = a[c] - r[c];
+
+  // Least-norm change of the most influential control points (section 3.3): they are
+  // placed, not integrated, until the next press or release.
+  const auto inf = influence_at(rest_->skeleton(), u, v, options_.influence_u, options_.influence_v);
+  std::fill(held_.begin(), held_.end(), 0);
+  for (int ia = 0; ia < inf.rows; ++ia) {
+    for (int jb = 0; jb < inf.cols; ++jb) {
+      const std::size_t p = idx((inf.i0 + ia) * cols_ + inf.j0 + jb);
+      const double w = inf.weight[idx(ia * inf.cols + jb)];
+      for (std::size_t c = 0; c < kComponents; ++c) {
+        x_[p * kComponents + c] += w * (target[c] - now[c]);
+        v_[p * kComponents + c] = 0.0;
+      }
+      held_[p] = 1;
+      write_back(p);
+    }
+  }
+  awake_ = true;
+  ++version_;
+}
+
+void DeformedBody::release() {
+  std::fill(held_.begin(), held_.end(), 0);
+  if (!options_.dynamics) {
+    std::fill(x_.begin(), x_.end(), 0.0);
+    std::fill(v_.begin(), v_.end(), 0.0);
+    skeleton_ = rest_->skeleton();  // same sizes: copies into the existing storage
+    top_ = rest_->top();
+    bottom_ = rest_->bottom();
+    awake_ = false;
+    ++version_;
+  }
+}
+
+void DeformedBody::rebuild_steps(double dt) {
+  for (std::size_t p = 0; p < steps_.size(); ++p) steps_[p] = OscillatorStep::exact(k_[p], b_[p], m_[p], dt);
+  step_dt_ = dt;
+}
+
+void DeformedBody::step(double dt) {
+  if (!awake_ || !(dt > 0.0)) return;
+  if (dt != step_dt_) rebuild_steps(dt);
+  if (!options_.dynamics) return;  // released points went back at release(); held ones stay
+  bool moving = false;
+  bool any_held = false;
+  for (std::size_t p = 0; p < held_.size(); ++p) {
+    if (held_[p] != 0) {
+      any_held = true;
+      continue;
+    }
+    double* x = &x_[p * kComponents];
+    double* v = &v_[p * kComponents];
+    bool displaced = false;
+    for (int c = 0; c < kComponents; ++c) displaced = displaced || x[c] != 0.0 || v[c] != 0.0;
+    if (!displaced) continue;
+    bool point_moving = false;
+    for (int c = 0; c < kComponents; ++c) {
+      steps_[p].apply(x[c], v[c]);
+      point_moving = point_moving || std::abs(x[c]) >= options_.sleep_displacement ||
+                     std::abs(v[c]) >= options_.sleep_velocity;
+    }
+    // A point that has settled is put exactly at rest: left alone it would decay into
+    // subnormal numbers, which are two orders of magnitude slower to compute with, while
+    // a long press keeps the body awake.
+    if (!point_moving) {
+      std::fill_n(x, kComponents, 0.0);
+      std::fill_n(v, kComponents, 0.0);
+    }
+    moving = moving || point_moving;
+    write_back(p);
+  }
+  ++version_;
+  if (!any_held && !moving) {
+    // At rest within the thresholds: put it exactly at rest and stop integrating.
+    std::fill(x_.begin(), x_.end(), 0.0);
+    std::fill(v_.begin(), v_.end(), 0.0);
+    skeleton_ = rest_->skeleton();
+    top_ = rest_->top();
+    bottom_ = rest_->bottom();
+    awake_ = false;
+  }
+}
+
+double DeformedBody::max_displacement() const {
+  double m = 0.0;
+  for (double x : x_) m = std::max(m, std::abs(x));
+  return m;
+}
+
+double DeformedBody::energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < k_.size(); ++p) {
+    for (int c = 0; c < kComponents; ++c) {
+      const double x = x_[p * kComponents + idx(c)];
+      const double v = v_[p * kComponents + idx(c)];
+      e += 0.5 * (m_[p] * v * v + k_[p] * x * x);
+    }
+  }
+  return e;
+}
+
+}  // namespace palpa::deform
