@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <new>
 
+#include "palpa/deform/deformed_body.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 
@@ -51,6 +52,35 @@ TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
   const auto fresh = scene.make_state();
   EXPECT_GT(g_allocations.load(), control);
   EXPECT_EQ(fresh.warm.size(), scene.size());
+}
+
+TEST(ProbeRealTime, PressAndSpringStepsAllocateNothingInEitherScheme) {
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  for (const bool dynamics : {true, false}) {
+    deform::DeformOptions opts;
+    opts.dynamics = dynamics;
+    deform::DeformedBody drawn(scene.body(0).body, opts);
+    auto state = scene.make_state();
+    ProbeOptions options;
+    options.remember_side = true;
+    drawn.step(1e-3);  // sizes the per-step tables for this dt before counting
+    const long before = g_allocations.load();
+    int presses = 0;
+    for (int k = 0; k < 3000; ++k) {
+      const double t = 0.002 * k;
+      const Vec3 q(0.04 * std::sin(t), 0.05 * std::cos(0.7 * t), 0.035 + 0.03 * std::sin(3.1 * t));
+      const auto r = scene.probe(q, state, options);
+      if (r.body == 0) {
+        drawn.press(r.contact, q);
+        ++presses;
+      } else {
+        drawn.release();
+      }
+      drawn.step(1e-3);
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << (dynamics ? "with dynamics" : "without dynamics");
+    EXPECT_GT(presses, 100);
+  }
 }
 
 }  // namespace
