@@ -198,9 +198,9 @@ int run_bench_dynamics(const std::filesystem::path& out_dir) {
   }
 
   plot::LinePlot p;
-  p.title = "Control-point springs: max error over 0.2 s vs time step (k 300 N/m, 1 g, zeta 0.2)";
+  p.title = "Spring integrators: max error over 0.2 s vs time step";
   p.x = {"time step dt (s)", plot::Scale::Log10, {}, {}};
-  p.y = {"max |x - x_exact| (m), x0 = 1 mm", plot::Scale::Log10, 1e-18, 1e3};
+  p.y = {"max |x - x_exact| (m); x0 1 mm, 300 N/m, 1 g, zeta 0.2", plot::Scale::Log10, 1e-18, 1e3};
   for (const auto& integ : kIntegrators) {
     plot::Series s{integ.name, {}, {}, plot::Marker::Circle, true};
     for (const auto& r : dyn) {

@@ -154,6 +154,31 @@ class BenchAccuracy(unittest.TestCase):
                 self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
 
 
+class BenchDynamics(unittest.TestCase):
+    def test_exact_integrator_is_exact_and_explicit_euler_diverges(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_dyn_") as d:
+            res = run(["bench", "dynamics", "--out", d], timeout=600)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "dynamics.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            exact = [r for r in rows if r["integrator"].startswith("exact")]
+            self.assertEqual(len(exact), 7)
+            for r in exact:
+                self.assertLess(float(r["max_error_m"]), 1e-15, r)  # 1 mm released: round-off only
+                self.assertEqual(r["stable"], "1")
+            explicit = {float(r["dt_s"]): r for r in rows if r["integrator"] == "explicit Euler"}
+            self.assertEqual(explicit[1e-2]["stable"], "0")  # why explicit Euler is not acceptable
+            with open(os.path.join(d, "modification.csv")) as fh:
+                mods = {int(r["p_prime"]): r for r in csv.DictReader(fh)}
+            for p, r in mods.items():
+                self.assertLess(float(r["landing_error_rel"]), 1e-12, r)
+            # numerics.md: 1.78 at a knot with all 16 points; one point alone blows up.
+            self.assertAlmostEqual(float(mods[4]["max_dp_over_d"]), 1.7778, delta=1e-3)
+            self.assertGreater(float(mods[1]["max_dp_over_d"]), 3.0)
+            with open(os.path.join(d, "dynamics.png"), "rb") as fh:
+                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+
+
 def main():
     global CLI, REPO
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
