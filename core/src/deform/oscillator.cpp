@@ -56,9 +56,12 @@ OscillatorStep OscillatorStep::exact(double k, double b, double m, double dt) {
     const double bb = s.xv * rk / rm;
     const double c = s.vx * rm / rk;
     const double d = s.vv;
+    // Largest squared singular value of [[a, bb], [c, d]]; the discriminant frob^2 - 4 det^2
+    // is written as a product of sums of squares, which does not cancel for the rotations
+    // of an undamped oscillator (where it is exactly 0).
     const double frob = a * a + bb * bb + c * c + d * d;
-    const double det = a * d - bb * c;
-    const double sigma2 = 0.5 * (frob + std::sqrt(std::max(0.0, frob * frob - 4.0 * det * det)));
+    const double disc = std::sqrt(((a - d) * (a - d) + (bb + c) * (bb + c)) * ((a + d) * (a + d) + (bb - c) * (bb - c)));
+    const double sigma2 = 0.5 * (frob + disc);
     if (sigma2 > 1.0) {
       const double scale = 1.0 / std::sqrt(sigma2);
       s.xx *= scale;
