@@ -4,6 +4,7 @@
 
 #include "bench_accuracy.hpp"
 #include "bench_dynamics.hpp"
+#include "bench_suites.hpp"
 #include "commands.hpp"
 
 namespace palpa::cli {
@@ -28,7 +29,16 @@ Command add_bench_command(CLI::App& parent) {
                   "p' x q' choices of control-point modification. Writes dynamics.csv, modification.csv and "
                   "dynamics.png into --out.");
   dynamics->add_option("--out", *dyn_out, "output folder; default bench-results");
-  return {app, [o, out, accuracy, dynamics, dyn_out] {
+  auto tess_out = std::make_shared<std::string>("bench-results");
+  auto tess_case = std::make_shared<std::string>("data/cases/default.json");
+  auto* tessellation = app->add_subcommand(
+      "tessellation", "Display tessellation of a case's first body (top and bottom contours, at rest and pressed "
+                      "10 mm in) at tolerances from 1e-2 m to 1e-6 m: segments, triangles, time per body and the "
+                      "largest deviation from the surface. Writes tessellation.csv and tessellation.png into --out.");
+  tessellation->add_option("--case", *tess_case, "case file; default data/cases/default.json");
+  tessellation->add_option("--out", *tess_out, "output folder; default bench-results");
+  return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case] {
+            if (tessellation->parsed()) return run_bench_tessellation(*tess_out, *tess_case);
             if (dynamics->parsed()) return run_bench_dynamics(*dyn_out);
             if (!accuracy->parsed()) return static_cast<int>(kBadInput);
             o->out = *out;

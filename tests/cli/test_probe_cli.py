@@ -179,6 +179,28 @@ class BenchDynamics(unittest.TestCase):
                 self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
 
 
+class BenchTessellation(unittest.TestCase):
+    def test_deviation_stays_within_tolerance_at_display_tolerances(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_tess_") as d:
+            case = os.path.join(REPO, "data", "cases", "default.json")
+            res = run(["bench", "tessellation", "--case", case, "--out", d], timeout=900)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "tessellation.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual({r["state"] for r in rows}, {"rest", "pressed"})
+            for r in rows:
+                if float(r["tolerance_m"]) >= 1e-5:  # every tolerance a display would use
+                    self.assertEqual(r["within"], "1", r)
+                    self.assertLessEqual(float(r["max_deviation_m"]), float(r["tolerance_m"]), r)
+            finer = sorted(rows, key=lambda r: (r["state"], -float(r["tolerance_m"])))
+            for a, b in zip(finer, finer[1:]):
+                if a["state"] == b["state"]:
+                    self.assertLessEqual(int(a["triangles"]), int(b["triangles"]))  # finer tolerance, more triangles
+            res = run(["bench", "tessellation", "--case", os.path.join(d, "missing.json"), "--out", d])
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("missing.json", res.stderr)
+
+
 def main():
     global CLI, REPO
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])

@@ -1,0 +1,16 @@
+#pragma once
+// Benchmark suites of `palpa-cli bench` that run on a case file. Each writes a CSV and a
+// PNG into its output folder, prints a table and returns the process exit code.
+#include <filesystem>
+
+namespace palpa::cli {
+
+/// palpa-cli bench tessellation: the display tessellation of the case's first body (top
+/// and bottom contours) at tolerances from 1e-2 m down to 1e-6 m, at rest and pressed
+/// 10 mm in: segments, triangles, time per body (median), the largest deviation of the
+/// mesh from the surface and whether it is within the tolerance. Writes
+/// out_dir/tessellation.csv and out_dir/tessellation.png. Returns 0, or 2 for a case
+/// that cannot be loaded or fitted (one line per problem on stderr).
+int run_bench_tessellation(const std::filesystem::path& out_dir, const std::filesystem::path& case_path);
+
+}  // namespace palpa::cli
