@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""palpa-cli probe and palpa-cli bench accuracy, end to end.
+"""palpa-cli probe, end to end.
 
 Run: python3 tests/cli/test_probe_cli.py --cli build/release/app/palpa-cli --repo .
 
@@ -129,76 +129,64 @@ class Probe(unittest.TestCase):
             self.assertIn("not inside", res.stderr)
 
 
-class BenchAccuracy(unittest.TestCase):
-    def test_small_run_writes_csv_and_png_with_sound_figures(self):
-        with tempfile.TemporaryDirectory(prefix="palpa_bench_") as d:
-            res = run(["bench", "accuracy", "--probes", "60", "--out", d], timeout=300)
-            self.assertEqual(res.returncode, 0, res.stderr)
-            with open(os.path.join(d, "accuracy.csv")) as fh:
-                rows = list(csv.DictReader(fh))
-            self.assertEqual(list(rows[0].keys()),
-                             ["body", "method", "levels", "queries", "ns_per_query", "depth_error_max_m",
-                              "depth_error_median_m", "param_error_max", "inside_wrong"])
-            bodies = {r["body"] for r in rows}
-            self.assertEqual(bodies, {"flat", "curved", "concave", "wavy"})
-            for r in rows:
-                self.assertGreater(float(r["ns_per_query"]), 0.0)
-                if r["method"].startswith("fast"):
-                    self.assertLess(float(r["depth_error_max_m"]), 1e-9, r)
-                    self.assertEqual(r["inside_wrong"], "0", r)
-            flat = {int(r["levels"]): float(r["depth_error_max_m"]) for r in rows
-                    if r["body"] == "flat" and r["method"] == "bisect"}
-            self.assertEqual(sorted(flat), list(range(6, 21, 2)))
-            self.assertLess(flat[20], flat[6] / 1000)  # the bisection halves its interval per level
-            with open(os.path.join(d, "accuracy.png"), "rb") as fh:
-                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+class Simulate(unittest.TestCase):
+    """palpa-cli simulate: a scripted press through the default case."""
 
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="palpa_sim_")
+        self.case = os.path.join(REPO, "data", "cases", "default.json")
+        self.traj = os.path.join(self.tmp.name, "traj.csv")
+        with open(self.traj, "w") as fh:
+            fh.write("t,x,y,z\n")
+            for k in range(21):  # down 30 mm over the tumour in 1 s, back out in 1 s
+                depth = 0.003 * (k if k <= 10 else 20 - k)
+                fh.write("%r,0.0245,0.02,%r\n" % (0.1 * k, 0.046 - depth))
 
-class BenchDynamics(unittest.TestCase):
-    def test_exact_integrator_is_exact_and_explicit_euler_diverges(self):
-        with tempfile.TemporaryDirectory(prefix="palpa_bench_dyn_") as d:
-            res = run(["bench", "dynamics", "--out", d], timeout=600)
-            self.assertEqual(res.returncode, 0, res.stderr)
-            with open(os.path.join(d, "dynamics.csv")) as fh:
-                rows = list(csv.DictReader(fh))
-            exact = [r for r in rows if r["integrator"].startswith("exact")]
-            self.assertEqual(len(exact), 7)
-            for r in exact:
-                self.assertLess(float(r["max_error_m"]), 1e-15, r)  # 1 mm released: round-off only
-                self.assertEqual(r["stable"], "1")
-            explicit = {float(r["dt_s"]): r for r in rows if r["integrator"] == "explicit Euler"}
-            self.assertEqual(explicit[1e-2]["stable"], "0")  # why explicit Euler is not acceptable
-            with open(os.path.join(d, "modification.csv")) as fh:
-                mods = {int(r["p_prime"]): r for r in csv.DictReader(fh)}
-            for p, r in mods.items():
-                self.assertLess(float(r["landing_error_rel"]), 1e-12, r)
-            # numerics.md: 1.78 at a knot with all 16 points; one point alone blows up.
-            self.assertAlmostEqual(float(mods[4]["max_dp_over_d"]), 1.7778, delta=1e-3)
-            self.assertGreater(float(mods[1]["max_dp_over_d"]), 3.0)
-            with open(os.path.join(d, "dynamics.png"), "rb") as fh:
-                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+    def tearDown(self):
+        self.tmp.cleanup()
 
+    def simulate(self, out, *extra):
+        res = run(["simulate", self.case, "--trajectory", self.traj, "--out", out] + list(extra))
+        self.assertEqual(res.returncode, 0, res.stderr)
+        with open(out, "rb") as fh:
+            return fh.read()
 
-class BenchTessellation(unittest.TestCase):
-    def test_deviation_stays_within_tolerance_at_display_tolerances(self):
-        with tempfile.TemporaryDirectory(prefix="palpa_bench_tess_") as d:
-            case = os.path.join(REPO, "data", "cases", "default.json")
-            res = run(["bench", "tessellation", "--case", case, "--out", d], timeout=900)
-            self.assertEqual(res.returncode, 0, res.stderr)
-            with open(os.path.join(d, "tessellation.csv")) as fh:
-                rows = list(csv.DictReader(fh))
-            self.assertEqual({r["state"] for r in rows}, {"rest", "pressed"})
-            for r in rows:
-                if float(r["tolerance_m"]) >= 1e-5:  # every tolerance a display would use
-                    self.assertEqual(r["within"], "1", r)
-                    self.assertLessEqual(float(r["max_deviation_m"]), float(r["tolerance_m"]), r)
-            finer = sorted(rows, key=lambda r: (r["state"], -float(r["tolerance_m"])))
-            for a, b in zip(finer, finer[1:]):
-                if a["state"] == b["state"]:
-                    self.assertLessEqual(int(a["triangles"]), int(b["triangles"]))  # finer tolerance, more triangles
-            res = run(["bench", "tessellation", "--case", os.path.join(d, "missing.json"), "--out", d])
-            self.assertEqual(res.returncode, 2)
-            self.assertIn("missing.json", res.stderr)
+    def test_fast_runs_are_byte_identical_and_press_the_tumour(self):
+        a = self.simulate(os.path.join(self.tmp.name, "a.csv"), "--fast")
+        b = self.simulate(os.path.join(self.tmp.name, "b.csv"))
+        self.assertEqual(a, b)
+        rows = list(csv.DictReader(io.StringIO(a.decode())))
+        self.assertEqual(len(rows), 2001)  # t = 0 .. 2 s at 1 kHz
+        self.assertEqual(list(rows[0].keys()), ["t", "x", "y", "z", "fx", "fy", "fz", "body", "u", "v", "depth",
+                                                "buttons", "overrun", "fault"])
+        deepest = max(rows, key=lambda r: float(r["depth"]))
+        self.assertEqual(deepest["body"], "breast")
+        self.assertGreater(float(deepest["fz"]), 10.0)  # the tumour was reached
+        self.assertEqual(rows[-1]["body"], "")           # and the probe left again
+        plain = self.simulate(os.path.join(self.tmp.name, "c.csv"), "--no-shear", "--no-dynamics", "--rate", "500")
+        self.assertEqual(len(plain.decode().splitlines()), 1 + 1001)
+
+    def test_marks_are_checked_and_kept(self):
+        marks = os.path.join(self.tmp.name, "marks.csv")
+        with open(marks, "w") as fh:
+            fh.write("t,x,y,z\n1.2,0.0245,0.02,0.03\n")
+        out = os.path.join(self.tmp.name, "m.csv")
+        self.simulate(out, "--marks", marks)
+        with open(out + ".marks.csv") as fh:
+            self.assertEqual(fh.read().splitlines()[1].split(",")[0], "1.2")
+
+    def test_bad_trajectories_are_one_line_errors(self):
+        bad = os.path.join(self.tmp.name, "bad.csv")
+        for text, word in (("t,x,y\n0,0,0\n", "header"), ("t,x,y,z\n0,0,0,0\n0,1,1,1\n", "increase"),
+                           ("t,x,y,z\n0,0,0,0\n", "two rows")):
+            with open(bad, "w") as fh:
+                fh.write(text)
+            res = run(["simulate", self.case, "--trajectory", bad, "--out", os.path.join(self.tmp.name, "x.csv")])
+            self.assertEqual(res.returncode, 2, res.stderr)
+            lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
+            self.assertEqual(len(lines), 1, res.stderr)
+            self.assertIn("bad.csv", lines[0])
+            self.assertIn(word, lines[0])
 
 
 def main():

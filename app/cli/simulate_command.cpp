@@ -1,0 +1,120 @@
+// palpa-cli simulate CASE --trajectory TRAJ.csv --out PATH: drives the haptic engine with a
+// scripted probe and writes one CSV row per haptic tick.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "palpa/engine/engine.hpp"
+#include "palpa/engine/virtual_device.hpp"
+#include "palpa/io/case_file.hpp"
+#include "palpa/io/csv.hpp"
+#include "palpa/io/json_text.hpp"
+#include "simulate_output.hpp"
+
+namespace palpa::cli {
+namespace {
+
+struct SimulateOptions {
+  std::string case_path;
+  std::string trajectory_path;
+  std::string marks_path;
+  std::string out_path;
+  double rate = 1000.0;
+  bool fast = false;
+  bool realtime = false;
+  bool no_dynamics = false;
+  bool no_shear = false;
+};
+
+// Reads a `t,x,y,z` file: times must increase (trajectory) or not decrease (marks).
+bool read_timed_points(const std::string& path, bool strictly_increasing, engine::Trajectory& out) {
+  try {
+    const auto table = io::read_numeric_csv(path, {"t", "x", "y", "z"});
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+      const auto& row = table.rows[r];
+      if (row[0] < 0.0 || (!out.t.empty() && (strictly_increasing ? row[0] <= out.t.back() : row[0] < out.t.back()))) {
+        print_error(path + ": line " + std::to_string(table.line_numbers[r]) + ": column t: times must " +
+                    (strictly_increasing ? "increase" : "not decrease") + " and be >= 0");
+        return false;
+      }
+      out.t.push_back(row[0]);
+      out.position.emplace_back(row[1], row[2], row[3]);
+    }
+    if (strictly_increasing && out.t.size() < 2) {
+      print_error(path + ": a trajectory needs at least two rows");
+      return false;
+    }
+    return true;
+  } catch (const io::CsvError& e) {
+    print_error(e.what());
+    return false;
+  }
+}
+
+int run_simulate(const SimulateOptions& o) {
+  std::unique_ptr<scene::Scene> scene;
+  try {
+    scene = std::make_unique<scene::Scene>(scene::Scene::build(io::load_case(o.case_path), o.case_path));
+  } catch (const io::CaseError& e) {
+    for (const auto& line : e.lines()) print_error(line);
+    return kBadInput;
+  }
+  engine::Trajectory trajectory;
+  if (!read_timed_points(o.trajectory_path, true, trajectory)) return kBadInput;
+  engine::Trajectory marks;
+  if (!o.marks_path.empty() && !read_timed_points(o.marks_path, false, marks)) return kBadInput;
+
+  engine::EngineOptions options;
+  options.rate_hz = o.rate;
+  options.dynamics = !o.no_dynamics;
+  options.shear = !o.no_shear;
+  engine::ScriptedDevice device(trajectory);
+  engine::Engine eng(*scene, device, options);
+
+  SampleCsvWriter writer(o.out_path);
+  if (!writer.ok()) {
+    print_error(o.out_path + ": cannot write");
+    return kFailure;
+  }
+  std::uint64_t ticks = 0;
+  engine::run_fast(eng, trajectory.duration(), [&](const engine::Sample& s) {
+    writer.write(s, scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
+    ++ticks;
+  });
+  if (!writer.close()) {
+    print_error(o.out_path + ": write failed (disk full?)");
+    return kFailure;
+  }
+  if (!marks.t.empty() && !write_marks_csv(o.out_path + ".marks.csv", marks)) {
+    print_error(o.out_path + ".marks.csv: cannot write");
+    return kFailure;
+  }
+  std::fprintf(stderr, "simulate: %llu ticks at %.0f Hz (%.3f s of trajectory) written to %s\n",
+               static_cast<unsigned long long>(ticks), o.rate, trajectory.duration(), o.out_path.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+Command add_simulate_command(CLI::App& parent) {
+  auto o = std::make_shared<SimulateOptions>();
+  auto* app = parent.add_subcommand(
+      "simulate", "Drive the haptic engine with a scripted probe (TRAJ.csv: header t,x,y,z in s and m, linear in "
+                  "between) and write one CSV row per tick to --out: "
+                  "t,x,y,z,fx,fy,fz,body,u,v,depth,buttons,overrun,fault (the session file replaces it once "
+                  "sessions exist). --fast (the default) is deterministic: the same inputs give the same bytes.");
+  app->add_option("CASE", o->case_path, "case file (JSON)")->required();
+  app->add_option("--trajectory", o->trajectory_path, "probe trajectory CSV: t,x,y,z")->required();
+  app->add_option("--out", o->out_path, "output CSV of samples")->required();
+  app->add_option("--rate", o->rate, "haptic rate in Hz; default 1000")->check(CLI::Range(10.0, 100000.0));
+  auto* fast = app->add_flag("--fast", o->fast, "run the ticks as fast as possible, deterministically (default)");
+  (void)fast;
+  app->add_option("--marks", o->marks_path,
+                  "the trainee's tumour marks, CSV t,x,y,z; checked and copied to OUT.marks.csv until sessions exist");
+  app->add_flag("--no-dynamics", o->no_dynamics, "released control points return to rest at once");
+  app->add_flag("--no-shear", o->no_shear, "leave out the shear springs");
+  return {app, [o] { return run_simulate(*o); }};
+}
+
+}  // namespace palpa::cli

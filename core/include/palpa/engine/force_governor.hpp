@@ -1,0 +1,34 @@
+#pragma once
+// The last stage before a force reaches a device: a per-device cap, a limit on how fast
+// the force may change, and a ramp to zero on any fault (device error, stalled loop,
+// pause, shutdown), so the hand never gets a jolt.
+#include "palpa/engine/device.hpp"
+
+namespace palpa::engine {
+
+struct SafetyOptions {
+  double max_force = 30.0;         ///< N; the device's own maximum caps this further
+  double max_force_rate = 5000.0;  ///< N/s: |dF/dt| limit (a 1500 N/m tumour pressed at 0.5 m/s needs 750)
+  double ramp_time = 0.05;         ///< s: a fault takes the force from the cap to 0 in this time
+  double watchdog_timeout = 0.02;  ///< s without a completed tick before the watchdog faults
+};
+
+class ForceGovernor {
+ public:
+  ForceGovernor(const SafetyOptions& options, double device_max_force);
+
+  /// The force to send after a tick of length dt: `requested` capped and rate-limited, or
+  /// ramping to zero while `fault` holds. Allocation-free.
+  Vec3 govern(const Vec3& requested, double dt, bool fault) noexcept;
+
+  double cap() const { return cap_; }
+  const Vec3& last() const { return last_; }
+
+ private:
+  double cap_;
+  double rate_;
+  double ramp_rate_;
+  Vec3 last_ = Vec3::Zero();
+};
+
+}  // namespace palpa::engine

@@ -1,0 +1,57 @@
+#include "palpa/engine/engine.hpp"
+
+namespace palpa::engine {
+
+Engine::Engine(const scene::Scene& scene, Device& device, const EngineOptions& options)
+    : scene_(&scene),
+      device_(&device),
+      options_(options),
+      state_(scene.make_state()),
+      governor_(options.safety, device.capabilities().max_force) {
+  options_.probe.remember_side = true;  // successive ticks are one probe path
+  options_.probe.force.shear = options.shear;
+  options_.deform.dynamics = options.dynamics;
+  drawn_.reserve(scene.size());
+  for (std::size_t b = 0; b < scene.size(); ++b) drawn_.emplace_back(scene.body(b).body, options_.deform);
+}
+
+Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
+  Sample s;
+  s.t = t;
+  s.overrun = overrun;
+  const double dt = started_ ? t - last_t_ : 1.0 / options_.rate_hz;
+  last_t_ = t;
+  started_ = true;
+
+  DevicePose pose;
+  const DeviceStatus status = device_->read(t, pose);
+  s.position = pose.position;
+  s.buttons = pose.buttons;
+  s.fault = hold_fault || status != DeviceStatus::Ok;
+
+  Vec3 requested = Vec3::Zero();
+  if (status == DeviceStatus::Ok) {
+    // Foot point and force on the rest bodies (boxes cull the rest), then the drawn body
+    // follows the probe so that what is seen is what is felt.
+    const auto r = scene_->probe(pose.position, state_, options_.probe);
+    if (pressed_ >= 0 && pressed_ != r.body) drawn_[static_cast<std::size_t>(pressed_)].release();
+    if (r.body >= 0) {
+      drawn_[static_cast<std::size_t>(r.body)].press(r.contact, pose.position);
+      s.body = r.body;
+      s.u = r.contact.foot.u;
+      s.v = r.contact.foot.v;
+      s.depth = r.contact.depth;
+      requested = r.force.total;
+    }
+    pressed_ = r.body;
+  }
+  // Only awake bodies integrate; a body at rest costs one flag test.
+  for (auto& body : drawn_) {
+    if (body.awake()) body.step(dt);
+  }
+  s.force = governor_.govern(requested, dt, s.fault);
+  if (device_->write_force(s.force) != DeviceStatus::Ok) s.fault = true;
+  return s;
+}
+
+}  // namespace palpa::engine

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""palpa-cli bench accuracy, dynamics and tessellation, end to end: each runs a small
+configuration and its CSV figures are checked against properties that must hold (the
+fast foot point at round-off, the exact integrator exact, tessellation within tolerance).
+
+Run: python3 tests/cli/test_bench_cli.py --cli build/release/app/palpa-cli --repo .
+(Not run in the sanitizer build: the benchmarks exercise the same core code as the unit
+tests, and instrumented they take minutes.)
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = None
+REPO = None
+TIMEOUT = 600
+
+
+def run(args, timeout=TIMEOUT):
+    return subprocess.run([CLI] + args, capture_output=True, text=True, timeout=timeout)
+
+
+class BenchAccuracy(unittest.TestCase):
+    def test_small_run_writes_csv_and_png_with_sound_figures(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_") as d:
+            res = run(["bench", "accuracy", "--probes", "60", "--out", d], timeout=300)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "accuracy.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual(list(rows[0].keys()),
+                             ["body", "method", "levels", "queries", "ns_per_query", "depth_error_max_m",
+                              "depth_error_median_m", "param_error_max", "inside_wrong"])
+            bodies = {r["body"] for r in rows}
+            self.assertEqual(bodies, {"flat", "curved", "concave", "wavy"})
+            for r in rows:
+                self.assertGreater(float(r["ns_per_query"]), 0.0)
+                if r["method"].startswith("fast"):
+                    self.assertLess(float(r["depth_error_max_m"]), 1e-9, r)
+                    self.assertEqual(r["inside_wrong"], "0", r)
+            flat = {int(r["levels"]): float(r["depth_error_max_m"]) for r in rows
+                    if r["body"] == "flat" and r["method"] == "bisect"}
+            self.assertEqual(sorted(flat), list(range(6, 21, 2)))
+            self.assertLess(flat[20], flat[6] / 1000)  # the bisection halves its interval per level
+            with open(os.path.join(d, "accuracy.png"), "rb") as fh:
+                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+
+
+class BenchDynamics(unittest.TestCase):
+    def test_exact_integrator_is_exact_and_explicit_euler_diverges(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_dyn_") as d:
+            res = run(["bench", "dynamics", "--out", d], timeout=600)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "dynamics.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            exact = [r for r in rows if r["integrator"].startswith("exact")]
+            self.assertEqual(len(exact), 7)
+            for r in exact:
+                self.assertLess(float(r["max_error_m"]), 1e-15, r)  # 1 mm released: round-off only
+                self.assertEqual(r["stable"], "1")
+            explicit = {float(r["dt_s"]): r for r in rows if r["integrator"] == "explicit Euler"}
+            self.assertEqual(explicit[1e-2]["stable"], "0")  # why explicit Euler is not acceptable
+            with open(os.path.join(d, "modification.csv")) as fh:
+                mods = {int(r["p_prime"]): r for r in csv.DictReader(fh)}
+            for p, r in mods.items():
+                self.assertLess(float(r["landing_error_rel"]), 1e-12, r)
+            # numerics.md: 1.78 at a knot with all 16 points; one point alone blows up.
+            self.assertAlmostEqual(float(mods[4]["max_dp_over_d"]), 1.7778, delta=1e-3)
+            self.assertGreater(float(mods[1]["max_dp_over_d"]), 3.0)
+            with open(os.path.join(d, "dynamics.png"), "rb") as fh:
+                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+
+
+class BenchTessellation(unittest.TestCase):
+    def test_deviation_stays_within_tolerance_at_display_tolerances(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_tess_") as d:
+            case = os.path.join(REPO, "data", "cases", "default.json")
+            res = run(["bench", "tessellation", "--case", case, "--out", d], timeout=900)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "tessellation.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual({r["state"] for r in rows}, {"rest", "pressed"})
+            for r in rows:
+                if float(r["tolerance_m"]) >= 1e-5:  # every tolerance a display would use
+                    self.assertEqual(r["within"], "1", r)
+                    self.assertLessEqual(float(r["max_deviation_m"]), float(r["tolerance_m"]), r)
+            finer = sorted(rows, key=lambda r: (r["state"], -float(r["tolerance_m"])))
+            for a, b in zip(finer, finer[1:]):
+                if a["state"] == b["state"]:
+                    self.assertLessEqual(int(a["triangles"]), int(b["triangles"]))  # finer tolerance, more triangles
+            res = run(["bench", "tessellation", "--case", os.path.join(d, "missing.json"), "--out", d])
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("missing.json", res.stderr)
+
+
+def main():
+    global CLI, REPO
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--cli", required=True)
+    ap.add_argument("--repo", required=True)
+    args, rest = ap.parse_known_args()
+    CLI = os.path.abspath(args.cli)
+    REPO = os.path.abspath(args.repo)
+    prog = unittest.main(argv=[sys.argv[0]] + rest, exit=False)
+    return 0 if prog.result.wasSuccessful() else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
