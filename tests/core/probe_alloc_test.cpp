@@ -7,6 +7,8 @@
 #include <new>
 
 #include "palpa/deform/deformed_body.hpp"
+#include "palpa/engine/engine.hpp"
+#include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 
@@ -81,6 +83,23 @@ TEST(ProbeRealTime, PressAndSpringStepsAllocateNothingInEitherScheme) {
     EXPECT_EQ(g_allocations.load() - before, 0) << (dynamics ? "with dynamics" : "without dynamics");
     EXPECT_GT(presses, 100);
   }
+}
+
+TEST(ProbeRealTime, TheEngineTickAllocatesNothing) {
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  engine::VirtualDevice device(0.02);
+  engine::Engine eng(scene, device);
+  eng.tick(0.0);  // sizes the spring tables for the tick length
+  const long before = g_allocations.load();
+  int contacts = 0;
+  for (int k = 1; k < 4000; ++k) {
+    const double t = k * 1e-3;
+    device.set_target(Vec3(0.04 * std::sin(t), 0.05 * std::cos(0.7 * t), 0.035 + 0.03 * std::sin(3.1 * t)));
+    const auto s = eng.tick(t, false, k > 3500);  // the last half second paused: ramp to zero
+    contacts += s.body >= 0 ? 1 : 0;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(contacts, 100);
 }
 
 }  // namespace
