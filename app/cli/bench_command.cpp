@@ -5,6 +5,7 @@
 #include "bench_accuracy.hpp"
 #include "bench_dynamics.hpp"
 #include "bench_suites.hpp"
+#include "bench_table1.hpp"
 #include "commands.hpp"
 
 namespace palpa::cli {
@@ -37,7 +38,20 @@ Command add_bench_command(CLI::App& parent) {
                       "largest deviation from the surface. Writes tessellation.csv and tessellation.png into --out.");
   tessellation->add_option("--case", *tess_case, "case file; default data/cases/default.json");
   tessellation->add_option("--out", *tess_out, "output folder; default bench-results");
-  return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case] {
+  auto t1 = std::make_shared<Table1Options>();
+  auto t1_csv = std::make_shared<std::string>();
+  auto* table1 = app->add_subcommand(
+      "table1", "Scenes like the paper's Table 1 (1/49, 1/105, 4/213, 10/309, 17/465, 35/927 bodies/MAT points): "
+                "preprocessing time, model memory, haptic step time p50/p99 with and without dynamics, the highest "
+                "sustainable rate and the share of one core at 1 kHz, printed beside the paper's figures.");
+  table1->add_option("--csv", *t1_csv, "also write the figures as CSV");
+  table1->add_option("--seconds", t1->seconds, "simulated seconds of palpation per scene and mode; default 2")
+      ->check(CLI::Range(0.1, 600.0));
+  return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv] {
+            if (table1->parsed()) {
+              if (!t1_csv->empty()) t1->csv = *t1_csv;
+              return run_bench_table1(*t1);
+            }
             if (tessellation->parsed()) return run_bench_tessellation(*tess_out, *tess_case);
             if (dynamics->parsed()) return run_bench_dynamics(*dyn_out);
             if (!accuracy->parsed()) return static_cast<int>(kBadInput);

@@ -1,0 +1,17 @@
+#pragma once
+// palpa-cli bench table1: scenes like the paper's Table 1, measured as the paper did
+// (preprocessing, memory, haptic rate with and without dynamics) and then some.
+#include <filesystem>
+#include <optional>
+
+namespace palpa::cli {
+
+struct Table1Options {
+  std::optional<std::filesystem::path> csv;  ///< --csv OUT
+  double seconds = 2.0;                      ///< simulated seconds of palpation per scene and mode
+  bool realtime = true;                      ///< also run each scene paced at 1 kHz on the real-time loop
+};
+
+int run_bench_table1(const Table1Options& options);
+
+}  // namespace palpa::cli
