@@ -47,6 +47,10 @@ Command add_bench_command(CLI::App& parent) {
   table1->add_option("--csv", *t1_csv, "also write the figures as CSV");
   table1->add_option("--seconds", t1->seconds, "simulated seconds of palpation per scene and mode; default 2")
       ->check(CLI::Range(0.1, 600.0));
+  table1->add_option("--realtime-seconds", t1->realtime_seconds,
+                     "then run each scene paced at 1 kHz on the real-time thread this long (0: skip); default 2")
+      ->check(CLI::Range(0.0, 3600.0));
+  table1->add_flag("--load", t1->load, "keep every core busy with other threads during the paced runs");
   return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv] {
             if (table1->parsed()) {
               if (!t1_csv->empty()) t1->csv = *t1_csv;

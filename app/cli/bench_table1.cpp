@@ -8,7 +8,11 @@
 #include <string>
 #include <vector>
 
+#include <atomic>
+#include <thread>
+
 #include "palpa/engine/engine.hpp"
+#include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 
@@ -119,6 +123,64 @@ StepTimes time_ticks(const scene::Scene& scene, const engine::Trajectory& tr, bo
           *std::max_element(us.begin(), us.end()), contacts};
 }
 
+struct PacedRun {
+  double rate_hz = 0.0;
+  std::uint64_t ticks = 0;
+  std::uint64_t missed = 0;
+  double p99_period_us = 0.0;
+  double max_period_us = 0.0;
+  std::string scheduling;
+};
+
+// The scene on the real-time loop at 1 kHz for `seconds`, the probe palpating as above.
+PacedRun paced_run(const scene::Scene& scene, const engine::Trajectory& tr, double seconds) {
+  engine::ScriptedDevice device(tr);
+  engine::Engine eng(scene, device);
+  engine::RealtimeLoop loop(eng);
+  PacedRun run;
+  run.scheduling = loop.start();
+  engine::Sample s;
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    while (loop.pop_sample(s)) {
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  loop.stop();
+  while (loop.pop_sample(s)) {
+  }
+  const auto& st = loop.stats();
+  run.ticks = st.ticks();
+  run.missed = st.missed();
+  run.rate_hz = st.mean_period() > 0.0 ? 1.0 / st.mean_period() : 0.0;
+  run.p99_period_us = st.period_percentile(0.99) * 1e6;
+  run.max_period_us = st.max_period() * 1e6;
+  return run;
+}
+
+// Busy threads on the other cores, to show the haptic thread holds its rate under load.
+class CpuLoad {
+ public:
+  explicit CpuLoad(bool on) {
+    if (!on) return;
+    const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned k = 0; k < n; ++k) {
+      threads_.emplace_back([this] {
+        volatile double x = 1.0;
+        while (!stop_.load(std::memory_order_relaxed)) x = x * 1.0000001 + 1e-9;
+      });
+    }
+  }
+  ~CpuLoad() {
+    stop_.store(true);
+    for (auto& t : threads_) t.join();
+  }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::vector<std::thread> threads_;
+};
+
 }  // namespace
 
 int run_bench_table1(const Table1Options& options) {
@@ -143,14 +205,27 @@ int run_bench_table1(const Table1Options& options) {
     // The highest rate the worst 1 % of ticks still fits (one core, nothing else to do).
     const double max_rate = 1e6 / std::max(dyn.p99_us, nodyn.p99_us);
     const double core_share = dyn.mean_us * 1000.0 / 1e6 * 100.0;  // at 1 kHz
+    PacedRun paced;
+    if (options.realtime_seconds > 0.0) {
+      const CpuLoad load(options.load);
+      paced = paced_run(scene, palpation(spec, options.realtime_seconds + 1.0), options.realtime_seconds);
+      if (spec.bodies == 1 && spec.mat_points == 49) std::printf("%s%s\n", paced.scheduling.c_str(), options.load ? "; all cores loaded by busy threads" : "");
+    }
     std::printf("%6d %6d | %10.2f %9.1f | %10.2f %10.2f %10.2f %10.2f | %9.0f %8.2f%% | %g s, %g MB, %g/%g Hz\n",
                 spec.bodies, spec.mat_points, pre_ms, static_cast<double>(memory) / 1024.0, dyn.p50_us, dyn.p99_us,
                 nodyn.p50_us, nodyn.p99_us, max_rate, core_share, spec.paper_pre_s, spec.paper_mb, spec.paper_hz_dyn,
                 spec.paper_hz_nodyn);
+    if (options.realtime_seconds > 0.0) {
+      std::printf("%6s %6s   paced at 1 kHz for %.0f s: %.1f Hz, %llu of %llu deadlines missed, period p99 %.0f us, max "
+                  "%.0f us\n",
+                  "", "", options.realtime_seconds, paced.rate_hz, static_cast<unsigned long long>(paced.missed),
+                  static_cast<unsigned long long>(paced.ticks), paced.p99_period_us, paced.max_period_us);
+    }
     char row[400];
-    std::snprintf(row, sizeof row, "%d,%d,%.3f,%zu,%.3f,%.3f,%.3f,%.3f,%.0f,%.3f,%d", spec.bodies, spec.mat_points,
-                  pre_ms, memory, dyn.p50_us, dyn.p99_us, nodyn.p50_us, nodyn.p99_us, max_rate, core_share,
-                  dyn.contact_ticks);
+    std::snprintf(row, sizeof row, "%d,%d,%.3f,%zu,%.3f,%.3f,%.3f,%.3f,%.0f,%.3f,%d,%.2f,%llu,%llu", spec.bodies,
+                  spec.mat_points, pre_ms, memory, dyn.p50_us, dyn.p99_us, nodyn.p50_us, nodyn.p99_us, max_rate,
+                  core_share, dyn.contact_ticks, paced.rate_hz, static_cast<unsigned long long>(paced.missed),
+                  static_cast<unsigned long long>(paced.ticks));
     csv_rows.emplace_back(row);
   }
   std::printf("\nStep times: one haptic tick (device read, foot point and force on the rest bodies, press, springs "
@@ -159,7 +234,7 @@ int run_bench_table1(const Table1Options& options) {
   if (options.csv) {
     std::ofstream out(*options.csv);
     out << "bodies,mat_points,preprocess_ms,memory_bytes,step_p50_us_dyn,step_p99_us_dyn,step_p50_us_nodyn,"
-           "step_p99_us_nodyn,max_rate_hz,core_share_percent_1khz,contact_ticks\n";
+           "step_p99_us_nodyn,max_rate_hz,core_share_percent_1khz,contact_ticks,rate_1khz_hz,missed_1khz,ticks_1khz\n";
     for (const auto& r : csv_rows) out << r << "\n";
     if (!out) {
       std::fprintf(stderr, "palpa-cli: error: %s: cannot write\n", options.csv->c_str());

@@ -9,7 +9,8 @@ namespace palpa::cli {
 struct Table1Options {
   std::optional<std::filesystem::path> csv;  ///< --csv OUT
   double seconds = 2.0;                      ///< simulated seconds of palpation per scene and mode
-  bool realtime = true;                      ///< also run each scene paced at 1 kHz on the real-time loop
+  double realtime_seconds = 2.0;             ///< then each scene paced at 1 kHz on the real-time loop (0: skip)
+  bool load = false;                         ///< keep every other core busy during the paced runs
 };
 
 int run_bench_table1(const Table1Options& options);

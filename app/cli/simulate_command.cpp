@@ -5,7 +5,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include <chrono>
+#include <thread>
+
 #include "palpa/engine/engine.hpp"
+#include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/csv.hpp"
@@ -78,10 +82,30 @@ int run_simulate(const SimulateOptions& o) {
     return kFailure;
   }
   std::uint64_t ticks = 0;
-  engine::run_fast(eng, trajectory.duration(), [&](const engine::Sample& s) {
+  const auto write = [&](const engine::Sample& s) {
     writer.write(s, scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
     ++ticks;
-  });
+  };
+  if (o.realtime) {
+    // The haptic thread paces the ticks; this thread is the writer, draining the ring.
+    engine::RealtimeLoop loop(eng);
+    std::fprintf(stderr, "%s\n", loop.start().c_str());
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(trajectory.duration());
+    engine::Sample s;
+    while (std::chrono::steady_clock::now() < end) {
+      while (loop.pop_sample(s)) write(s);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    loop.stop();  // ramps the force to zero first
+    while (loop.pop_sample(s)) write(s);
+    std::fprintf(stderr, "%s\n", loop.stats().summary().c_str());
+    if (loop.dropped_samples() > 0) {
+      std::fprintf(stderr, "simulate: %llu samples dropped (the writer fell behind)\n",
+                   static_cast<unsigned long long>(loop.dropped_samples()));
+    }
+  } else {
+    engine::run_fast(eng, trajectory.duration(), write);
+  }
   if (!writer.close()) {
     print_error(o.out_path + ": write failed (disk full?)");
     return kFailure;
@@ -109,7 +133,10 @@ Command add_simulate_command(CLI::App& parent) {
   app->add_option("--out", o->out_path, "output CSV of samples")->required();
   app->add_option("--rate", o->rate, "haptic rate in Hz; default 1000")->check(CLI::Range(10.0, 100000.0));
   auto* fast = app->add_flag("--fast", o->fast, "run the ticks as fast as possible, deterministically (default)");
-  (void)fast;
+  app->add_flag("--realtime", o->realtime,
+                "run on the real-time haptic thread at --rate for the trajectory's duration and print the loop "
+                "statistics (period and compute time percentiles, missed deadlines)")
+      ->excludes(fast);
   app->add_option("--marks", o->marks_path,
                   "the trainee's tumour marks, CSV t,x,y,z; checked and copied to OUT.marks.csv until sessions exist");
   app->add_flag("--no-dynamics", o->no_dynamics, "released control points return to rest at once");

@@ -13,7 +13,7 @@ SampleCsvWriter::~SampleCsvWriter() {
 void SampleCsvWriter::write(const engine::Sample& s, const std::string& body_id) {
   if (file_ == nullptr) return;
   const int n = std::fprintf(file_, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%.17g,%.17g,%u,%d,%d\n", s.t,
-                             s.position.x(), s.position.y(), s.position.z(), s.force.x(), s.force.y(), s.force.z(),
+                             s.position[0], s.position[1], s.position[2], s.force[0], s.force[1], s.force[2],
                              s.body >= 0 ? body_id.c_str() : "", s.u, s.v, s.depth, s.buttons, s.overrun ? 1 : 0,
                              s.fault ? 1 : 0);
   if (n < 0) failed_ = true;

@@ -125,15 +125,16 @@ TEST(Engine, ForceIsTheContactForceAndTheDrawnSurfaceFollowsTheProbe) {
   for (int k = 0; k <= 2000; ++k) {
     const double t = k * 1e-3;
     const Sample s = engine.tick(t);
-    const auto r = scene.probe(s.position, state, probe);
+    const Vec3 q(s.position[0], s.position[1], s.position[2]);
+    const auto r = scene.probe(q, state, probe);
     ASSERT_EQ(s.body, r.body) << t;
-    EXPECT_LE((s.force - r.force.total).norm(), 1e-12) << t;
+    EXPECT_LE((Vec3(s.force[0], s.force[1], s.force[2]) - r.force.total).norm(), 1e-12) << t;
     if (s.body >= 0) {
       ++contacts;
       // The drawn top contour under the probe is on the probe.
       std::array<double, 3> p{};
       engine.drawn(0).top().evaluate(s.u, s.v, p);
-      EXPECT_LT((Vec3(p[0], p[1], p[2]) - s.position).norm(), 1e-9) << t;
+      EXPECT_LT((Vec3(p[0], p[1], p[2]) - q).norm(), 1e-9) << t;
     }
   }
   EXPECT_GT(contacts, 1000);
@@ -182,11 +183,11 @@ TEST(Engine, ADeviceErrorOrAPauseRampsTheForceToZero) {
     for (int k = 0; k <= 1000; ++k) {
       const double t = k * 1e-3;
       const Sample s = engine.tick(t, false, pause && t >= 0.8);
-      if (k == 799) at_fault = s.force.norm();
+      if (k == 799) at_fault = Vec3(s.force[0], s.force[1], s.force[2]).norm();
       if (t >= 0.8) {
         EXPECT_TRUE(s.fault);
       }
-      if (k == 800 + 50) after = s.force.norm();  // ramp_time 50 ms
+      if (k == 800 + 50) after = Vec3(s.force[0], s.force[1], s.force[2]).norm();  // ramp_time 50 ms
     }
     EXPECT_GT(at_fault, 1.0) << "pressing when the fault comes";
     EXPECT_EQ(after, 0.0) << (pause ? "pause" : "device error");

@@ -25,7 +25,7 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
 
   DevicePose pose;
   const DeviceStatus status = device_->read(t, pose);
-  s.position = pose.position;
+  s.position = {pose.position.x(), pose.position.y(), pose.position.z()};
   s.buttons = pose.buttons;
   s.fault = hold_fault || status != DeviceStatus::Ok;
 
@@ -49,8 +49,9 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   for (auto& body : drawn_) {
     if (body.awake()) body.step(dt);
   }
-  s.force = governor_.govern(requested, dt, s.fault);
-  if (device_->write_force(s.force) != DeviceStatus::Ok) s.fault = true;
+  const Vec3 force = governor_.govern(requested, dt, s.fault);
+  s.force = {force.x(), force.y(), force.z()};
+  if (device_->write_force(force) != DeviceStatus::Ok) s.fault = true;
   return s;
 }
 

@@ -3,6 +3,7 @@
 // read the device, find the contact, deform, integrate the awake bodies, govern and write
 // the force. The tick is allocation-free, lock-free and does no I/O; the real-time thread
 // that paces it lives in realtime_loop.hpp.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -22,11 +23,12 @@ struct EngineOptions {
   SafetyOptions safety{};
 };
 
-/// One haptic tick, as the session log keeps it (trivially copyable: it crosses threads).
+/// One haptic tick, as the session log keeps it. Plain data (std::array, not Eigen) so it is
+/// trivially copyable and can cross threads through a lock-free ring.
 struct Sample {
-  double t = 0.0;              ///< s since the engine started
-  Vec3 position = Vec3::Zero();  ///< m, the probe
-  Vec3 force = Vec3::Zero();     ///< N, as sent to the device (after the governor)
+  double t = 0.0;                        ///< s since the engine started
+  std::array<double, 3> position{};      ///< m, the probe
+  std::array<double, 3> force{};         ///< N, as sent to the device (after the governor)
   std::int32_t body = -1;      ///< index of the contacted body, -1 when none
   double u = 0.0;
   double v = 0.0;
