@@ -62,3 +62,90 @@ TEST(RealtimeLoop, TicksAtItsRateHandsOverEverySampleAndRampsToZeroOnStop) {
 
 }  // namespace
 }  // namespace palpa::engine
+
+namespace palpa::engine {
+namespace {
+
+TEST(RealtimeLoop, TheGuiReadsWholeSnapshotsWhileTheBodyDeformsAndCommandsArrive) {
+  const auto scene = scene::Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default");
+  VirtualDevice device(0.01);
+  Engine engine(scene, device);
+  RealtimeLoop loop(engine);
+  loop.start();
+  std::uint64_t last_tick = 0;
+  int snapshots = 0;
+  int deformed = 0;
+  const double rest_sum = [&] {
+    double sum = 0.0;
+    for (double x : scene.body(0).body.top().control()) sum += x;
+    for (double x : scene.body(0).body.bottom().control()) sum += x;
+    return sum;
+  }();
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 400; ++k) {  // the "GUI": 0.4 s of moving the mouse and reading
+    const double t = 0.001 * k;
+    device.set_target(Vec3(0.02 * std::sin(20 * t), 0.01, 0.035 - 0.01 * std::sin(10 * t)));
+    if (k == 150) {
+      EXPECT_TRUE(loop.send({Command::Kind::Shear, false}));
+    }
+    if (k == 250) {
+      EXPECT_TRUE(loop.send({Command::Kind::Pause, false}));
+    }
+    if (loop.update_snapshot()) {
+      const auto& s = loop.snapshot();
+      ++snapshots;
+      // Whole: the contents add up to what the haptic thread summed when it wrote them.
+      EXPECT_EQ(s.contents_sum(), s.checksum) << "torn snapshot at tick " << s.tick;
+      EXPECT_GT(s.tick, last_tick);
+      last_tick = s.tick;
+      if (std::abs(s.checksum - rest_sum) > 1e-9) ++deformed;
+    }
+    std::this_thread::sleep_until(start + std::chrono::microseconds(1000 * (k + 1)));
+  }
+  loop.stop();
+  EXPECT_GT(snapshots, 20);  // about 125 per second were published
+  EXPECT_GT(deformed, 5);    // and they show the body pressed in
+  EXPECT_FALSE(engine.options().shear);  // the command reached the engine
+}
+
+// A device that stalls once (as a blocked driver would): the next ticks must not send the
+// stale force but ramp it to zero.
+class StallingDevice final : public Device {
+ public:
+  const DeviceCapabilities& capabilities() const override { return inner_.capabilities(); }
+  DeviceStatus read(double t, DevicePose& pose) noexcept override {
+    if (t > 0.15 && !stalled_) {
+      stalled_ = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    }
+    return inner_.read(t, pose);
+  }
+  DeviceStatus write_force(const Vec3& f) noexcept override { return inner_.write_force(f); }
+  VirtualDevice inner_{0.0};
+  bool stalled_ = false;
+};
+
+TEST(RealtimeLoop, AStallTriggersTheWatchdogRampToZero) {
+  const auto scene = scene::Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default");
+  StallingDevice device;
+  device.inner_.set_target(Vec3(0.0245, 0.02, 0.030));
+  Engine engine(scene, device);
+  RealtimeLoop loop(engine);
+  loop.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  loop.stop();
+  std::vector<Sample> samples;
+  Sample s;
+  while (loop.pop_sample(s)) samples.push_back(s);
+  ASSERT_FALSE(samples.empty());
+  std::size_t after = 0;
+  while (after < samples.size() && samples[after].t < 0.2) ++after;  // first tick after the stall
+  ASSERT_LT(after + 5, samples.size());
+  EXPECT_TRUE(samples[after].fault) << "the tick after a 60 ms stall ramps";
+  EXPECT_LT(norm(samples[after].force), norm(samples[after - 2].force)) << "the stale force is not sent again";
+  EXPECT_GT(norm(samples[after - 2].force), 1.0);
+  EXPECT_GE(loop.stats().missed(), 1u);  // and the statistics say a deadline was missed
+}
+
+}  // namespace
+}  // namespace palpa::engine

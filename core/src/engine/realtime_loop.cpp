@@ -4,6 +4,7 @@
 #include <sched.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -25,7 +26,7 @@ void advance(timespec& t, long ns) {
 }  // namespace
 
 RealtimeLoop::RealtimeLoop(Engine& engine, const RealtimeOptions& options)
-    : engine_(&engine), options_(options), stats_(LoopStats{}) {}
+    : engine_(&engine), options_(options), snapshots_(SceneSnapshot::sized_for(engine)), stats_(LoopStats{}) {}
 
 RealtimeLoop::~RealtimeLoop() { stop(); }
 
@@ -94,6 +95,10 @@ void RealtimeLoop::run() {
   double fault_until = -1.0;   // a stall or a stop keeps the fault (force ramping to 0) until then
   double stop_at = -1.0;
   int since_publish = 0;
+  const int snapshot_every = std::max(1, static_cast<int>(rate / std::max(1.0, options_.snapshot_rate) + 0.5));
+  int since_snapshot = 0;
+  std::uint64_t tick_number = 0;
+  bool paused = false;
   for (;;) {
     advance(deadline, period_ns);
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr);
@@ -106,9 +111,24 @@ void RealtimeLoop::run() {
     // would send now is stale, so ramp to zero from there.
     if (previous_start >= 0.0 && start - previous_start > watchdog) fault_until = start + ramp;
     if (stop_requested_.load(std::memory_order_acquire) && stop_at < 0.0) stop_at = start + ramp;
-    const bool fault = paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
+    Command command;
+    while (commands_.try_pop(command)) {
+      switch (command.kind) {
+        case Command::Kind::Pause: paused = true; break;
+        case Command::Kind::Resume: paused = false; break;
+        case Command::Kind::Shear: engine_->set_shear(command.on); break;
+        case Command::Kind::Dynamics: engine_->set_dynamics(command.on); break;
+      }
+    }
+    const bool fault = paused || paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
 
     const Sample s = engine_->tick(start, overrun, fault);
+    ++tick_number;
+    if (++since_snapshot >= snapshot_every) {
+      snapshots_.write_slot().capture(*engine_, s, tick_number);
+      snapshots_.publish();
+      since_snapshot = 0;
+    }
     if (!samples_.try_push(s)) dropped_.fetch_add(1, std::memory_order_relaxed);
 
     clock_gettime(CLOCK_MONOTONIC, &now);

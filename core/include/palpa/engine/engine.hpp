@@ -47,6 +47,13 @@ class Engine {
   /// shutdown, watchdog) ramps the force to zero like a device error.
   Sample tick(double t, bool overrun = false, bool hold_fault = false) noexcept;
 
+  /// Switches, applied between ticks (the real-time loop applies them from its command queue).
+  void set_shear(bool on) { options_.shear = on; options_.probe.force.shear = on; }
+  void set_dynamics(bool on) {
+    options_.dynamics = on;
+    for (auto& body : drawn_) body.set_dynamics(on);
+  }
+
   std::size_t body_count() const { return drawn_.size(); }
   const deform::DeformedBody& drawn(std::size_t body) const { return drawn_[body]; }
   const EngineOptions& options() const { return options_; }

@@ -10,16 +10,25 @@
 
 #include "palpa/engine/engine.hpp"
 #include "palpa/engine/loop_stats.hpp"
+#include "palpa/engine/scene_snapshot.hpp"
 #include "palpa/engine/spsc_queue.hpp"
 #include "palpa/engine/triple_buffer.hpp"
 
 namespace palpa::engine {
+
+/// A command from the GUI (or any one other thread) to the haptic thread.
+struct Command {
+  enum class Kind : std::uint8_t { Pause, Resume, Shear, Dynamics };
+  Kind kind = Kind::Pause;
+  bool on = false;  ///< for Shear and Dynamics
+};
 
 struct RealtimeOptions {
   bool request_fifo = true;    ///< ask for SCHED_FIFO; the outcome is reported, never ignored
   int fifo_priority = 80;      ///< 1..99
   int cpu = -1;                ///< pin the thread to this CPU (-1: no pinning)
   int stats_every = 100;       ///< publish loop statistics every N ticks
+  double snapshot_rate = 125.0;  ///< Hz: how often the scene snapshot for the GUI is published
 };
 
 /// Samples buffered between the haptic thread and the consumer: 16384 ticks, 16 s at
@@ -43,6 +52,14 @@ class RealtimeLoop {
   void pause(bool paused) { paused_.store(paused, std::memory_order_release); }
   bool running() const { return running_.load(std::memory_order_acquire); }
 
+  /// From one other thread (the GUI): queue a command for the haptic thread; false if the
+  /// queue is full (64 pending), which a GUI at 60 Hz never reaches.
+  bool send(const Command& command) { return commands_.try_push(command); }
+
+  /// Reader (one GUI thread): take the newest scene snapshot if there is a new one.
+  bool update_snapshot() { return snapshots_.update(); }
+  const SceneSnapshot& snapshot() const { return snapshots_.read(); }
+
   /// Consumer side: the next sample, if any.
   bool pop_sample(Sample& out) { return samples_.try_pop(out); }
   std::uint64_t dropped_samples() const { return dropped_.load(std::memory_order_relaxed); }
@@ -57,6 +74,8 @@ class RealtimeLoop {
   Engine* engine_;
   RealtimeOptions options_;
   SampleRing samples_;
+  SpscQueue<Command, 64> commands_;
+  TripleBuffer<SceneSnapshot> snapshots_;
   TripleBuffer<LoopStats> stats_;
   std::atomic<bool> running_{false};
   std::atomic<bool> stop_requested_{false};

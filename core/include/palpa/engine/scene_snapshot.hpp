@@ -1,0 +1,36 @@
+#pragma once
+// What the GUI draws, copied out of the haptic thread: the drawn contours' control points
+// of every body, the probe and the force. Sized once; copying one into another of the same
+// scene allocates nothing.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "palpa/engine/engine.hpp"
+
+namespace palpa::engine {
+
+struct BodySnapshot {
+  std::uint64_t version = 0;   ///< DeformedBody::version(): unchanged means nothing to redraw
+  std::vector<double> top;     ///< control points, rows*cols*3, as in BSplineSurface::control()
+  std::vector<double> bottom;
+};
+
+struct SceneSnapshot {
+  std::uint64_t tick = 0;
+  double t = 0.0;
+  std::array<double, 3> probe{};
+  std::array<double, 3> force{};
+  std::int32_t body = -1;
+  std::vector<BodySnapshot> bodies;
+  double checksum = 0.0;  ///< sum of all control-point values, so a torn copy would show
+
+  /// A snapshot sized for the engine's bodies.
+  static SceneSnapshot sized_for(const Engine& engine);
+  /// Fills this snapshot from the engine (same sizes: no allocation).
+  void capture(const Engine& engine, const Sample& last, std::uint64_t tick_number);
+  /// Recomputes the checksum of the contents (tests and the GUI's debug checks).
+  double contents_sum() const;
+};
+
+}  // namespace palpa::engine

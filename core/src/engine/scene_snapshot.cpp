@@ -1,0 +1,48 @@
+#include "palpa/engine/scene_snapshot.hpp"
+
+#include <algorithm>
+
+namespace palpa::engine {
+
+SceneSnapshot SceneSnapshot::sized_for(const Engine& engine) {
+  SceneSnapshot s;
+  s.bodies.resize(engine.body_count());
+  for (std::size_t b = 0; b < engine.body_count(); ++b) {
+    s.bodies[b].top.assign(engine.drawn(b).top().control().size(), 0.0);
+    s.bodies[b].bottom.assign(engine.drawn(b).bottom().control().size(), 0.0);
+    s.bodies[b].version = ~std::uint64_t{0};  // matches no body version: the first capture copies
+  }
+  return s;
+}
+
+void SceneSnapshot::capture(const Engine& engine, const Sample& last, std::uint64_t tick_number) {
+  tick = tick_number;
+  t = last.t;
+  probe = last.position;
+  force = last.force;
+  body = last.body;
+  double sum = 0.0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const auto& drawn = engine.drawn(b);
+    auto& out = bodies[b];
+    if (out.version != drawn.version()) {
+      std::copy(drawn.top().control().begin(), drawn.top().control().end(), out.top.begin());
+      std::copy(drawn.bottom().control().begin(), drawn.bottom().control().end(), out.bottom.begin());
+      out.version = drawn.version();
+    }
+    for (double x : out.top) sum += x;
+    for (double x : out.bottom) sum += x;
+  }
+  checksum = sum;
+}
+
+double SceneSnapshot::contents_sum() const {
+  double sum = 0.0;
+  for (const auto& b : bodies) {
+    for (double x : b.top) sum += x;
+    for (double x : b.bottom) sum += x;
+  }
+  return sum;
+}
+
+}  // namespace palpa::engine
