@@ -166,6 +166,22 @@ class Simulate(unittest.TestCase):
         plain = self.simulate(os.path.join(self.tmp.name, "c.csv"), "--no-shear", "--no-dynamics", "--rate", "500")
         self.assertEqual(len(plain.decode().splitlines()), 1 + 1001)
 
+    def test_realtime_run_reports_its_scheduling_and_loop_statistics(self):
+        out = os.path.join(self.tmp.name, "rt.csv")
+        res = run(["simulate", self.case, "--trajectory", self.traj, "--out", out, "--realtime"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("SCHED_FIFO", res.stderr)           # granted or refused, said either way
+        self.assertIn("missed deadlines", res.stderr)
+        self.assertRegex(res.stderr, r"Period p50 [0-9.]+ us, p99 [0-9.]+ us")
+        with open(out) as fh:
+            rows = list(csv.DictReader(fh))
+        self.assertGreater(len(rows), 1800)  # about 2 s at 1 kHz (plus the closing ramp)
+        self.assertLess(len(rows), 2300)
+        last = rows[-1]
+        self.assertEqual((float(last["fx"]), float(last["fy"]), float(last["fz"])), (0.0, 0.0, 0.0))
+        both = run(["simulate", self.case, "--trajectory", self.traj, "--out", out, "--realtime", "--fast"])
+        self.assertEqual(both.returncode, 2)
+
     def test_marks_are_checked_and_kept(self):
         marks = os.path.join(self.tmp.name, "marks.csv")
         with open(marks, "w") as fh:
