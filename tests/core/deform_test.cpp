@@ -1576,3 +1576,85 @@ TEST(DeformedBody, DegeneratePressesStayFinite) {
 
 }  // namespace
 }  // namespace palpa::deform
+
+namespace palpa::deform {
+namespace {
+
+// Review findings, kept as regression tests.
+
+TEST(DeformedBodyReview, ASoftSiteAmongStiffOnesStillSpringsBackAndSleeps) {
+  // One 150 N/m site in a 300 N/m field: the control points' own stiffness coefficients
+  // overshoot to about -149 N/m; the springs must not take them (a dent that never heals).
+  auto g = test::flat_body(7, 7, 0.05, 0.02, 300.0);
+  g.stiffness[3 * 7 + 3] = 150.0;
+  const auto rest = mat::MatBody::fit(g);
+  DeformedBody body(rest);
+  const contact::FootPointSearch search(rest.skeleton());
+  const contact::Vec3 q(0.0, 0.0, 0.006);
+  body.press(contact::make_contact(rest, search.closest(rest.skeleton(), q), q), q);
+  EXPECT_GT(body.max_displacement(), 0.005);
+  body.release();
+  int steps = 0;
+  while (body.awake() && steps < 20000) {
+    body.step(1e-3);
+    ++steps;
+  }
+  EXPECT_FALSE(body.awake()) << "still displaced by " << body.max_displacement() << " m after 20 s";
+  EXPECT_EQ(body.max_displacement(), 0.0);
+}
+
+TEST(DeformedBodyReview, AReducedWindowStaysOnTheProbeWhileSteppingAndSliding) {
+  const auto rest = mat::MatBody::fit(test::flat_body(9, 9));
+  const contact::FootPointSearch search(rest.skeleton());
+  for (int window : {1, 2, 3, 0}) {
+    DeformOptions o;
+    o.influence_u = window;
+    o.influence_v = window;
+    DeformedBody body(rest, o);
+    double worst = 0.0;
+    for (int k = 0; k < 300; ++k) {
+      const double t = 1e-3 * k;
+      const contact::Vec3 q(0.02 * std::sin(5 * t), 0.01 * std::cos(3 * t), 0.012);
+      const auto c = contact::make_contact(rest, search.closest(rest.skeleton(), q), q);
+      ASSERT_TRUE(c.inside);
+      body.press(c, q);
+      body.step(1e-3);
+      std::array<double, 3> p{};
+      body.top().evaluate(c.foot.u, c.foot.v, p);
+      worst = std::max(worst, (contact::Vec3(p[0], p[1], p[2]) - q).norm());
+    }
+    EXPECT_LT(worst, 1e-9) << "window " << window;
+  }
+}
+
+TEST(DeformedBodyReview, PressingWithAnOutsideContactReleases) {
+  const auto rest = mat::MatBody::fit(test::flat_body(7, 7));
+  const contact::FootPointSearch search(rest.skeleton());
+  DeformedBody body(rest);
+  const contact::Vec3 far(0.0, 0.0, 0.07);  // 5 cm above the body
+  const auto c = contact::make_contact(rest, search.closest(rest.skeleton(), far), far);
+  ASSERT_FALSE(c.inside);
+  body.press(c, far);
+  EXPECT_EQ(body.max_displacement(), 0.0);
+}
+
+TEST(DeformedBodyReview, JitteryTimeStepsStayStableAndSettle) {
+  const auto rest = mat::MatBody::fit(test::flat_body(7, 7));
+  const contact::FootPointSearch search(rest.skeleton());
+  DeformedBody body(rest);
+  const contact::Vec3 q(0.0, 0.0, 0.01);
+  body.press(contact::make_contact(rest, search.closest(rest.skeleton(), q), q), q);
+  body.release();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(0.999e-3, 1.001e-3);
+  double energy = body.energy();
+  for (int k = 0; k < 5000 && body.awake(); ++k) {
+    body.step(jitter(rng));
+    EXPECT_LE(body.energy(), energy * (1 + 1e-12) + 1e-300);
+    energy = body.energy();
+  }
+  EXPECT_FALSE(body.awake());
+}
+
+}  // namespace
+}  // namespace palpa::deform

@@ -531,3 +531,60 @@ TEST(Scene, ATumourOfAnUnknownBodyIsRejected) {
 
 }  // namespace
 }  // namespace palpa::scene
+
+namespace palpa::scene {
+namespace {
+
+TEST(Scene, ProbesNearAPoleAreFoundInside) {
+  // data/cases/pole-5x6.json: row 0 collapses to one point. Its samples are all copies of
+  // that point, where Su = Sv = 0; seeds must not all sit there (review finding: 130 of
+  // 40000 inside probes were once reported outside).
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/pole-5x6.json"), "pole");
+  const auto& sb = scene.body(0);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::array<double, mat::kSkeletonChannels> sk{};
+  int probes = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double u = 0.3 * unit(rng);
+    const double v = unit(rng);
+    sb.body.skeleton().evaluate(u, v, sk);
+    double n[3];
+    if (!mat::skeleton_normal(sb.body.skeleton(), u, v, n) || sk[mat::kRadius] <= 0.0) continue;
+    const double h = (2.0 * unit(rng) - 1.0) * 0.95 * sk[mat::kRadius];  // inside the sphere at SK(u, v)
+    const Vec3 q(sk[0] + h * n[0], sk[1] + h * n[1], sk[2] + h * n[2]);
+    const auto cold = contact::make_contact(sb.body, sb.search.closest(sb.body.skeleton(), q), q);
+    const auto warm = contact::make_contact(sb.body, sb.search.closest_from(sb.body.skeleton(), q, 0.0, 0.5), q);
+    ASSERT_TRUE(cold.inside) << "cold, probe " << q.transpose();
+    ASSERT_TRUE(warm.inside) << "warm from the pole, probe " << q.transpose();
+    ++probes;
+  }
+  EXPECT_GT(probes, 10000);
+}
+
+}  // namespace
+}  // namespace palpa::scene
+
+namespace palpa::scene {
+namespace {
+
+TEST(Scene, ATumourPokingOutOfASlopedSurfaceIsRejected) {
+  // flat-5x5: skeleton z = 0, radius 0.02 (1 - a^2)(1 - b^2). At x = 25 mm the top slopes by
+  // about 22 degrees; a tumour centred on the skeleton there with a radius just under the
+  // 15 mm vertical depth reaches past the sloped surface (its perpendicular distance is
+  // about 13.9 mm): rejected, though its centre is deeper than its radius.
+  auto file = io::load_case(PALPA_SOURCE_DIR "/data/cases/flat-5x5.json");
+  file.tumours = {mat::Tumour{"flat", {0.025, 0.0, 0.0}, 0.0145, 1000.0}};
+  try {
+    (void)Scene::build(file, "sloped.json");
+    FAIL() << "expected a CaseError";
+  } catch (const io::CaseError& e) {
+    EXPECT_EQ(e.problems().front().where, "/tumors/0");
+    EXPECT_NE(e.problems().front().reason.find("beyond the surface"), std::string::npos) << e.what();
+  }
+  file.tumours.front().radius = 0.012;  // well inside
+  EXPECT_NO_THROW((void)Scene::build(file, "sloped.json"));
+}
+
+}  // namespace
+}  // namespace palpa::scene

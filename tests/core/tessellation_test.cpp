@@ -557,6 +557,9 @@ TEST(BodyMeshes, ReTessellatesOnlyWhenTheBodyOrTheOptionsChange) {
   }
   EXPECT_LT(lowest_centre, 0.0175f);
 
+  body.step(1e-3);  // a static hold changes nothing
+  EXPECT_FALSE(meshes.update(body, o));
+  body.release();
   body.step(1e-3);  // springing back changes the surfaces
   EXPECT_TRUE(meshes.update(body, o));
   EXPECT_FALSE(meshes.update(body, o));

@@ -265,6 +265,12 @@ std::array<std::size_t, 3> FootPointSearch::nearest_samples(const Vec3& q, std::
   for (std::size_t k = 0; k < points_.size(); ++k) {
     const double dk = (points_[k] - q).squaredNorm();
     if (dk >= d2[2]) continue;
+    // Samples of a collapsed row (a pole) are copies of one point where Su = Sv = 0, so
+    // Newton cannot leave it: let one copy stand for all, keeping the other seeds for
+    // the rows around it.
+    bool duplicate = false;
+    for (std::size_t s = 0; s < 3 && std::isfinite(d2[s]); ++s) duplicate = duplicate || points_[best[s]] == points_[k];
+    if (duplicate) continue;
     std::size_t slot = 2;
     while (slot > 0 && dk < d2[slot - 1]) {
       d2[slot] = d2[slot - 1];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "palpa/deform/control_point_modification.hpp"
 
@@ -36,15 +37,40 @@ DeformedBody::DeformedBody(const mat::MatBody& rest, const DeformOptions& option
   m_.resize(n);
   steps_.resize(n);
   held_.assign(n, 0);
-  // Each control point's spring, damper and mass come from the skeleton's material
-  // channels at that control point (a fit may dip slightly below 0: clamp).
+  // Each control point's spring, damper and mass: the material where that control point
+  // acts most, i.e. the skeleton evaluated at its Greville parameters (the knot averages),
+  // kept within the range of the authored values. The control points' own material
+  // coefficients can overshoot far outside it (a single soft site among stiff ones gives
+  // a negative one), which would leave a dent that never springs back. Every point keeps
+  // at least 1 % of the body's largest stiffness so that it does return to rest.
+  const auto& sk = rest.skeleton();
+  std::array<double, mat::kSkeletonChannels> lo{};
+  std::array<double, mat::kSkeletonChannels> hi{};
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  std::array<double, mat::kSkeletonChannels> value{};
+  for (double u : rest.u_params()) {
+    for (double v : rest.v_params()) {
+      sk.evaluate(u, v, value);  // at the data sites: the authored values
+      for (std::size_t c = 0; c < value.size(); ++c) {
+        lo[c] = std::min(lo[c], value[c]);
+        hi[c] = std::max(hi[c], value[c]);
+      }
+    }
+  }
+  const auto greville = [](const std::vector<double>& knots, int degree, int index) {
+    double sum = 0.0;
+    for (int k = 1; k <= degree; ++k) sum += knots[idx(index + k)];
+    return sum / degree;
+  };
+  const double k_floor = 0.01 * std::max(hi[mat::kStiffness], 0.0);
   for (int i = 0; i < rows_; ++i) {
     for (int j = 0; j < cols_; ++j) {
-      const auto cp = rest.skeleton().control_point(i, j);
+      sk.evaluate(greville(sk.knots_u(), sk.degree_u(), i), greville(sk.knots_v(), sk.degree_v(), j), value);
       const std::size_t p = idx(i * cols_ + j);
-      k_[p] = std::max(0.0, cp[mat::kStiffness]);
-      b_[p] = std::max(0.0, cp[mat::kDamping]);
-      m_[p] = std::max(1e-9, cp[mat::kMass]);
+      k_[p] = std::max(k_floor, std::clamp(value[mat::kStiffness], lo[mat::kStiffness], hi[mat::kStiffness]));
+      b_[p] = std::max(0.0, std::clamp(value[mat::kDamping], lo[mat::kDamping], hi[mat::kDamping]));
+      m_[p] = std::max(1e-9, std::clamp(value[mat::kMass], lo[mat::kMass], hi[mat::kMass]));
     }
   }
 }
@@ -68,6 +94,10 @@ void DeformedBody::write_back(std::size_t point) {
 }
 
 void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q) {
+  if (!contact.inside) {  // nothing to press: a probe outside lets go
+    release();
+    return;
+  }
   const double u = contact.foot.u;
   const double v = contact.foot.v;
   const double depth = std::max(0.0, contact.depth);
@@ -108,7 +138,18 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   // Least-norm change of the most influential control points (section 3.3): they are
   // placed, not integrated, until the next press or release.
   const auto inf = influence_at(rest_->skeleton(), u, v, options_.influence_u, options_.influence_v);
+  // Hold the whole (p+1) x (q+1) support of (u, v), not only the window that moves: a
+  // free point of the support would keep springing back and pull the surface off the probe.
   std::fill(held_.begin(), held_.end(), 0);
+  const int p_deg = rest_->skeleton().degree_u();
+  const int q_deg = rest_->skeleton().degree_v();
+  for (int i = basis.span_u - p_deg; i <= basis.span_u; ++i) {
+    for (int j = basis.span_v - q_deg; j <= basis.span_v; ++j) {
+      const std::size_t p = idx(i * cols_ + j);
+      held_[p] = 1;
+      std::fill_n(&v_[p * kComponents], kComponents, 0.0);
+    }
+  }
   for (int ia = 0; ia < inf.rows; ++ia) {
     for (int jb = 0; jb < inf.cols; ++jb) {
       const std::size_t p = idx((inf.i0 + ia) * cols_ + inf.j0 + jb);
@@ -145,10 +186,15 @@ void DeformedBody::rebuild_steps(double dt) {
 
 void DeformedBody::step(double dt) {
   if (!awake_ || !(dt > 0.0)) return;
-  if (dt != step_dt_) rebuild_steps(dt);
   if (!options_.dynamics) return;  // released points went back at release(); held ones stay
+  // A real-time loop measures dt with jitter: rebuilding every point's exact map on each
+  // tick would cost more than the integration. The map is rebuilt only when dt moved by
+  // more than 1 %; integrating with the previous step length instead is still exact for
+  // that length and unconditionally stable, it only shifts the springs' time by <= 1 %.
+  if (!(std::abs(dt - step_dt_) <= 0.01 * dt)) rebuild_steps(dt);
   bool moving = false;
   bool any_held = false;
+  bool changed = false;
   for (std::size_t p = 0; p < held_.size(); ++p) {
     if (held_[p] != 0) {
       any_held = true;
@@ -173,9 +219,10 @@ void DeformedBody::step(double dt) {
       std::fill_n(v, kComponents, 0.0);
     }
     moving = moving || point_moving;
+    changed = true;
     write_back(p);
   }
-  ++version_;
+  if (changed) ++version_;  // a static hold changes nothing: nothing to re-tessellate
   if (!any_held && !moving) {
     // At rest within the thresholds: put it exactly at rest and stop integrating.
     std::fill(x_.begin(), x_.end(), 0.0);

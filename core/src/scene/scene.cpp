@@ -56,14 +56,27 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       problems.push_back({"/tumors/" + std::to_string(k) + "/body", "unknown body \"" + t.body + "\""});
       continue;
     }
-    // The tumour's sphere must lie inside the body: its centre at least its radius deep.
+    // The tumour's sphere must lie inside the body: its centre, and 26 points around its
+    // surface (the faces, edges and corners of a cube, projected onto the sphere), all at
+    // depth >= 0. The centre's depth alone is not enough where the surface slopes.
     const Vec3 c(t.center[0], t.center[1], t.center[2]);
-    const auto contact = contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c);
-    if (contact.depth < t.radius) {
-      char text[200];
+    double worst = contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c).depth;
+    const bool centre_inside = worst >= 0.0;
+    for (int dx = -1; dx <= 1 && centre_inside; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          const Vec3 x = c + t.radius * Vec3(dx, dy, dz).normalized();
+          worst = std::min(worst, contact::make_contact(it->body, it->search.closest(it->body.skeleton(), x), x).depth);
+        }
+      }
+    }
+    if (worst < 0.0) {
+      char text[220];
       std::snprintf(text, sizeof text,
-                    "tumour (radius %.4g m) is not inside body \"%s\": its centre is %.4g m %s the surface", t.radius,
-                    t.body.c_str(), std::abs(contact.depth), contact.depth >= 0 ? "below" : "outside");
+                    centre_inside ? "tumour (radius %.4g m) is not inside body \"%s\": it reaches %.4g m beyond the surface"
+                                  : "tumour (radius %.4g m) is not inside body \"%s\": its centre is %.4g m outside the surface",
+                    t.radius, t.body.c_str(), -worst);
       problems.push_back({"/tumors/" + std::to_string(k), text});
       continue;
     }
