@@ -257,20 +257,64 @@ void FootPointSearch::resample(const spline::BSplineSurface& skeleton) {
     }
   }
   reach_ = 0.75 * gap * std::sqrt(2.0);
+
+  sample_cols_ = vs.size();
+  blocks_.clear();
+  constexpr std::size_t kBlock = 4;
+  for (std::size_t i0 = 0; i0 < us.size(); i0 += kBlock) {
+    for (std::size_t j0 = 0; j0 < vs.size(); j0 += kBlock) {
+      Block b{Vec3::Zero(), 0.0, i0, std::min(i0 + kBlock, us.size()), j0, std::min(j0 + kBlock, vs.size())};
+      double count = 0.0;
+      for (std::size_t i = b.i0; i < b.i1; ++i)
+        for (std::size_t j = b.j0; j < b.j1; ++j, count += 1.0) b.center += points_[i * sample_cols_ + j];
+      b.center /= count;
+      for (std::size_t i = b.i0; i < b.i1; ++i)
+        for (std::size_t j = b.j0; j < b.j1; ++j)
+          b.radius = std::max(b.radius, (points_[i * sample_cols_ + j] - b.center).norm());
+      blocks_.push_back(b);
+    }
+  }
 }
 
 std::array<std::size_t, 3> FootPointSearch::nearest_samples(const Vec3& q, std::array<double, 3>& d2) const {
   std::array<std::size_t, 3> best{0, 0, 0};
   d2.fill(std::numeric_limits<double>::infinity());
-  for (std::size_t k = 0; k < points_.size(); ++k) {
-    const double dk = (points_[k] - q).squaredNorm();
-    if (dk >= d2[2]) continue;
+  // Start with the block whose sphere is nearest, so the bound below prunes from the start.
+  std::size_t first = 0;
+  double first_bound = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const double bound = (blocks_[b].center - q).norm() - blocks_[b].radius;
+    if (bound < first_bound) {
+      first_bound = bound;
+      first = b;
+    }
+  }
+  for (std::size_t n = 0; n <= blocks_.size(); ++n) {
+    const std::size_t b = n == 0 ? first : n - 1;
+    if (n > 0 && b == first) continue;
+    const Block& block = blocks_[b];
+    const double bound = (block.center - q).norm() - block.radius;
+    if (bound > 0.0 && bound * bound >= d2[2]) continue;  // no sample of this block can enter the three
+    for (std::size_t i = block.i0; i < block.i1; ++i) {
+      for (std::size_t j = block.j0; j < block.j1; ++j) {
+        const std::size_t k = i * sample_cols_ + j;
+        insert_seed(k, (points_[k] - q).squaredNorm(), best, d2);
+      }
+    }
+  }
+  return best;
+}
+
+void FootPointSearch::insert_seed(std::size_t k, double dk, std::array<std::size_t, 3>& best,
+                                  std::array<double, 3>& d2) const {
+  {
+    if (dk >= d2[2]) return;
     // Samples of a collapsed row (a pole) are copies of one point where Su = Sv = 0, so
     // Newton cannot leave it: let one copy stand for all, keeping the other seeds for
     // the rows around it.
     bool duplicate = false;
     for (std::size_t s = 0; s < 3 && std::isfinite(d2[s]); ++s) duplicate = duplicate || points_[best[s]] == points_[k];
-    if (duplicate) continue;
+    if (duplicate) return;
     std::size_t slot = 2;
     while (slot > 0 && dk < d2[slot - 1]) {
       d2[slot] = d2[slot - 1];
@@ -280,7 +324,6 @@ std::array<std::size_t, 3> FootPointSearch::nearest_samples(const Vec3& q, std::
     d2[slot] = dk;
     best[slot] = k;
   }
-  return best;
 }
 
 FootPoint FootPointSearch::closest(const spline::BSplineSurface& skeleton, const Vec3& q,

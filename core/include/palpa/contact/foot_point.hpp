@@ -71,11 +71,23 @@ class FootPointSearch {
   /// The three samples nearest to q (nearest first) and their squared distances
   /// (infinite where there are fewer samples).
   std::array<std::size_t, 3> nearest_samples(const Vec3& q, std::array<double, 3>& distance2) const;
+  /// Puts sample k (squared distance dk) among the three best unless it is farther or a
+  /// copy of one of them.
+  void insert_seed(std::size_t k, double dk, std::array<std::size_t, 3>& best, std::array<double, 3>& d2) const;
 
   int per_span_;
   double spacing_u_ = 0.0;  ///< widest gap between sample parameters
   double spacing_v_ = 0.0;
   double reach_ = 0.0;  ///< m: every skeleton point lies within this of a sample
+  /// Samples grouped in blocks of up to 4 x 4 with a bounding sphere each, so a query
+  /// skips the blocks that cannot hold a nearer sample (large grids stay cheap).
+  struct Block {
+    Vec3 center;
+    double radius;
+    std::size_t i0, i1, j0, j1;  // sample index ranges [i0, i1) x [j0, j1)
+  };
+  std::vector<Block> blocks_;
+  std::size_t sample_cols_ = 0;
   std::vector<Sample> uv_;
   std::vector<Vec3> points_;
 };
