@@ -22,7 +22,6 @@ using Clock = std::chrono::steady_clock;
 struct TestBody {
   std::string name;
   mat::MatBody body;
-  int concave_side;  ///< probes are biased to this side of the skeleton (+1 top, -1 bottom, 0 both)
 };
 
 mat::BodyGrid grid_of(int rows, int cols, const std::function<Vec3(double, double)>& skeleton, double r0) {
@@ -47,21 +46,21 @@ std::vector<TestBody> test_bodies() {
   std::vector<TestBody> out;
   out.push_back({"flat", mat::MatBody::fit(grid_of(9, 9, [](double s, double t) {
                    return Vec3(0.1 * s, 0.1 * t, 0.0);
-                 }, 0.02)), 0});
+                 }, 0.02))});
   out.push_back({"curved", mat::MatBody::fit(grid_of(9, 11, [](double s, double t) {
                    const double a = 2 * s - 1, b = 2 * t - 1;
                    return Vec3(0.14 * s, 0.16 * t, 0.025 * (1 - a * a) * (1 - b * b));
-                 }, 0.025)), 0});
-  // Half a cylinder of radius 6 cm bent around the y axis, probed from inside the bend:
-  // the skeleton is concave towards the probes, whose foot points are far from where a
-  // bisection step's sign test assumes.
-  out.push_back({"concave", mat::MatBody::fit(grid_of(11, 9, [](double s, double t) {
-                   const double phi = std::numbers::pi * (0.1 + 0.8 * s);
-                   return Vec3(0.06 * std::cos(phi), 0.1 * t, -0.06 * std::sin(phi));
-                 }, 0.02)), 0});
+                 }, 0.025))});
+  // A valley: the skeleton z = (x - 5 cm)^2 / (2 * 2 cm) has a 2 cm radius of curvature at
+  // its bottom, about the body's own half thickness, so probes on the concave side come near
+  // its centre of curvature, where the distance to the skeleton has several minima.
+  out.push_back({"concave", mat::MatBody::fit(grid_of(13, 9, [](double s, double t) {
+                   const double x = 0.1 * s - 0.05;
+                   return Vec3(0.1 * s, 0.1 * t, x * x / 0.04);
+                 }, 0.02))});
   out.push_back({"wavy", mat::MatBody::fit(grid_of(14, 14, [](double s, double t) {
                    return Vec3(0.12 * s, 0.12 * t, 0.012 * std::sin(3 * std::numbers::pi * s) * std::cos(2 * std::numbers::pi * t));
-                 }, 0.015)), 0});
+                 }, 0.015))});
   return out;
 }
 
