@@ -2,9 +2,6 @@
 // operator new (this test binary only) and must not touch it.
 #include <gtest/gtest.h>
 
-// The replacement operator new below allocates with malloc, so releasing with free is
-// right; GCC's -Wmismatched-new-delete cannot see that through the replacement.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 
 #include <atomic>
 #include <cstdlib>
@@ -15,21 +12,8 @@
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
+#include "counting_allocator.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return ::operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace palpa::scene {
 namespace {
@@ -41,7 +25,7 @@ TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
   ProbeOptions fast;
   ProbeOptions bisect;
   bisect.method = FootPointMethod::Bisect;
-  const long before = g_allocations.load();
+  const long before = palpa::test::allocations();
   double checksum = 0.0;
   for (int k = 0; k < 2000; ++k) {
     // In and out of the body (cold starts after leaving its box), over the tumour, far away.
@@ -50,13 +34,13 @@ TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
     const auto r = scene.probe(k % 50 == 0 ? Vec3(5.0, 5.0, 5.0) : q, state, k % 7 == 0 ? bisect : fast);
     checksum += r.force.total.norm();
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(palpa::test::allocations() - before, 0);
   EXPECT_GT(checksum, 0.0);  // some queries were in contact
 
   // The counter does see allocations: a fresh state allocates.
-  const long control = g_allocations.load();
+  const long control = palpa::test::allocations();
   const auto fresh = scene.make_state();
-  EXPECT_GT(g_allocations.load(), control);
+  EXPECT_GT(palpa::test::allocations(), control);
   EXPECT_EQ(fresh.warm.size(), scene.size());
 }
 
@@ -70,7 +54,7 @@ TEST(ProbeRealTime, PressAndSpringStepsAllocateNothingInEitherScheme) {
     ProbeOptions options;
     options.remember_side = true;
     drawn.step(1e-3);  // sizes the per-step tables for this dt before counting
-    const long before = g_allocations.load();
+    const long before = palpa::test::allocations();
     int presses = 0;
     for (int k = 0; k < 3000; ++k) {
       const double t = 0.002 * k;
@@ -84,7 +68,7 @@ TEST(ProbeRealTime, PressAndSpringStepsAllocateNothingInEitherScheme) {
       }
       drawn.step(1e-3);
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << (dynamics ? "with dynamics" : "without dynamics");
+    EXPECT_EQ(palpa::test::allocations() - before, 0) << (dynamics ? "with dynamics" : "without dynamics");
     EXPECT_GT(presses, 100);
   }
 }
@@ -94,7 +78,7 @@ TEST(ProbeRealTime, TheEngineTickAllocatesNothing) {
   engine::VirtualDevice device(0.02);
   engine::Engine eng(scene, device);
   eng.tick(0.0);  // sizes the spring tables for the tick length
-  const long before = g_allocations.load();
+  const long before = palpa::test::allocations();
   int contacts = 0;
   for (int k = 1; k < 4000; ++k) {
     const double t = k * 1e-3;
@@ -102,7 +86,7 @@ TEST(ProbeRealTime, TheEngineTickAllocatesNothing) {
     const auto s = eng.tick(t, false, k > 3500);  // the last half second paused: ramp to zero
     contacts += s.body >= 0 ? 1 : 0;
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(palpa::test::allocations() - before, 0);
   EXPECT_GT(contacts, 100);
 }
 

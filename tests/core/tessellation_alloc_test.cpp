@@ -3,9 +3,6 @@
 // operator new (this test binary only).
 #include <gtest/gtest.h>
 
-// The replacement operator new below allocates with malloc, so releasing with free is
-// right; GCC's -Wmismatched-new-delete cannot see that through the replacement.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 
 #include <atomic>
 #include <cstdlib>
@@ -17,21 +14,8 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/render/tessellation.hpp"
+#include "counting_allocator.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return ::operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace palpa::render {
 namespace {
@@ -43,9 +27,9 @@ long press_and_tessellate(const mat::MatBody& rest, deform::DeformedBody& body, 
   const contact::FootPointSearch search(rest.skeleton());
   long inside_update = 0;
   auto update = [&] {
-    const long before = g_allocations.load();
+    const long before = palpa::test::allocations();
     if (meshes.update(body, o)) ++updates;
-    inside_update += g_allocations.load() - before;
+    inside_update += palpa::test::allocations() - before;
   };
   update();
   for (int k = 0; k < 40; ++k) {
@@ -95,17 +79,17 @@ TEST(TessellationRealTime, ReTessellatingChangedBodiesAllocatesNothingOnceSized)
   TessellationOptions fine;
   fine.tolerance = 1e-5;
   tessellate(rest.top(), fine, false, m);
-  const long before = g_allocations.load();
+  const long before = palpa::test::allocations();
   tessellate(rest.top(), o, false, m);
   tessellate(rest.bottom(), o, true, m);
   tessellate(rest.top(), fine, false, m);
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(palpa::test::allocations() - before, 0);
 
   // The counter does see allocations: a fresh mesh allocates.
   Mesh fresh;
-  const long control = g_allocations.load();
+  const long control = palpa::test::allocations();
   tessellate(rest.top(), o, false, fresh);
-  EXPECT_GT(g_allocations.load(), control);
+  EXPECT_GT(palpa::test::allocations(), control);
 }
 
 }  // namespace
