@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -136,7 +137,8 @@ struct PacedRun {
 PacedRun paced_run(const scene::Scene& scene, const engine::Trajectory& tr, double seconds) {
   engine::ScriptedDevice device(tr);
   engine::Engine eng(scene, device);
-  engine::RealtimeLoop loop(eng);
+  auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
+  auto& loop = *loop_owner;
   PacedRun run;
   run.scheduling = loop.start();
   engine::Sample s;

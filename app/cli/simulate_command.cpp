@@ -88,7 +88,8 @@ int run_simulate(const SimulateOptions& o) {
   };
   if (o.realtime) {
     // The haptic thread paces the ticks; this thread is the writer, draining the ring.
-    engine::RealtimeLoop loop(eng);
+    auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
+    auto& loop = *loop_owner;
     std::fprintf(stderr, "%s\n", loop.start().c_str());
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(trajectory.duration());
     engine::Sample s;

@@ -207,3 +207,46 @@ TEST(Engine, WithoutDynamicsAReleasedBodyIsAtRestAtOnce) {
 
 }  // namespace
 }  // namespace palpa::engine
+
+namespace palpa::engine {
+namespace {
+
+class NaNDevice final : public Device {
+ public:
+  const DeviceCapabilities& capabilities() const override { return inner_.capabilities(); }
+  DeviceStatus read(double t, DevicePose& pose) noexcept override {
+    inner_.read(t, pose);
+    if (t >= 0.5) pose.position.x() = std::nan("");
+    return DeviceStatus::Ok;  // the driver does not notice
+  }
+  DeviceStatus write_force(const Vec3& f) noexcept override { return inner_.write_force(f); }
+  VirtualDevice inner_{0.0};
+};
+
+TEST(Engine, ANonFinitePoseIsAFaultNotAPosition) {
+  NaNDevice device;
+  device.inner_.set_target(Vec3(0.0245, 0.02, 0.030));
+  Engine engine(default_scene(), device);
+  Sample s;
+  for (int k = 0; k <= 600; ++k) s = engine.tick(k * 1e-3);
+  EXPECT_TRUE(s.fault);
+  EXPECT_EQ(s.body, -1);
+  EXPECT_EQ(s.force, (std::array<double, 3>{}));  // ramped to zero within 50 ms of the first NaN
+  for (double x : s.position) EXPECT_TRUE(std::isfinite(x));
+}
+
+TEST(Engine, ALateTickCannotLetTheForceJump) {
+  VirtualDevice device(0.0);
+  EngineOptions options;
+  options.safety.max_force_rate = 1000.0;  // 1 N per 1 ms tick
+  Engine engine(default_scene(), device, options);
+  device.set_target(Vec3(0.0245, 0.02, 0.06));  // above the body
+  engine.tick(0.0);
+  device.set_target(Vec3(0.0245, 0.02, 0.025));  // deep in, at once
+  const Sample late = engine.tick(0.015);          // 15 ms late (under the 20 ms watchdog)
+  const double f = std::sqrt(late.force[0] * late.force[0] + late.force[1] * late.force[1] + late.force[2] * late.force[2]);
+  EXPECT_LE(f, 1.0 + 1e-12);  // one nominal period's worth of the rate limit, not 15
+}
+
+}  // namespace
+}  // namespace palpa::engine

@@ -1,5 +1,9 @@
 #include "palpa/engine/engine.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
 namespace palpa::engine {
 
 Engine::Engine(const scene::Scene& scene, Device& device, const EngineOptions& options)
@@ -8,6 +12,9 @@ Engine::Engine(const scene::Scene& scene, Device& device, const EngineOptions& o
       options_(options),
       state_(scene.make_state()),
       governor_(options.safety, device.capabilities().max_force) {
+  if (!(options.rate_hz > 0.0) || !std::isfinite(options.rate_hz)) {
+    throw std::invalid_argument("Engine: the haptic rate must be a positive number of Hz");
+  }
   options_.probe.remember_side = true;  // successive ticks are one probe path
   options_.probe.force.shear = options.shear;
   options_.deform.dynamics = options.dynamics;
@@ -19,13 +26,18 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   Sample s;
   s.t = t;
   s.overrun = overrun;
-  const double dt = started_ ? t - last_t_ : 1.0 / options_.rate_hz;
+  // The governor sees at most one nominal period, so a late tick cannot let the force jump
+  // by more than one tick's worth of its rate limit; the springs always advance by the
+  // nominal period (a measured, jittery dt would rebuild their step maps inside the tick).
+  const double period = 1.0 / options_.rate_hz;
+  const double dt = started_ ? std::clamp(t - last_t_, 0.0, period) : period;
   last_t_ = t;
   started_ = true;
 
   DevicePose pose;
-  const DeviceStatus status = device_->read(t, pose);
-  s.position = {pose.position.x(), pose.position.y(), pose.position.z()};
+  DeviceStatus status = device_->read(t, pose);
+  if (status == DeviceStatus::Ok && !pose.position.allFinite()) status = DeviceStatus::Error;  // garbage is a fault
+  if (status == DeviceStatus::Ok) s.position = {pose.position.x(), pose.position.y(), pose.position.z()};
   s.buttons = pose.buttons;
   s.fault = hold_fault || status != DeviceStatus::Ok;
 
@@ -47,7 +59,7 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   }
   // Only awake bodies integrate; a body at rest costs one flag test.
   for (auto& body : drawn_) {
-    if (body.awake()) body.step(dt);
+    if (body.awake()) body.step(period);
   }
   const Vec3 force = governor_.govern(requested, dt, s.fault);
   s.force = {force.x(), force.y(), force.z()};

@@ -34,8 +34,8 @@ std::string RealtimeLoop::start() {
   if (running_.load()) return scheduling_;
   stop_requested_.store(false);
   started_.store(0);
+  thread_ = std::thread([this] { run(); });  // throws if no thread can be made: nothing set yet
   running_.store(true, std::memory_order_release);
-  thread_ = std::thread([this] { run(); });
   while (started_.load(std::memory_order_acquire) == 0) std::this_thread::yield();
   return scheduling_;
 }
@@ -98,10 +98,10 @@ void RealtimeLoop::run() {
   const int snapshot_every = std::max(1, static_cast<int>(rate / std::max(1.0, options_.snapshot_rate) + 0.5));
   int since_snapshot = 0;
   std::uint64_t tick_number = 0;
-  bool paused = false;
   for (;;) {
     advance(deadline, period_ns);
-    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+    }  // a signal must not start the tick early
     timespec now{};
     clock_gettime(CLOCK_MONOTONIC, &now);
     const double start = seconds(now) - seconds(origin);
@@ -114,13 +114,13 @@ void RealtimeLoop::run() {
     Command command;
     while (commands_.try_pop(command)) {
       switch (command.kind) {
-        case Command::Kind::Pause: paused = true; break;
-        case Command::Kind::Resume: paused = false; break;
+        case Command::Kind::Pause: paused_.store(true, std::memory_order_release); break;
+        case Command::Kind::Resume: paused_.store(false, std::memory_order_release); break;
         case Command::Kind::Shear: engine_->set_shear(command.on); break;
         case Command::Kind::Dynamics: engine_->set_dynamics(command.on); break;
       }
     }
-    const bool fault = paused || paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
+    const bool fault = paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
 
     const Sample s = engine_->tick(start, overrun, fault);
     ++tick_number;

@@ -15,16 +15,15 @@ VirtualDevice::VirtualDevice(double settling_time, double max_force)
 }
 
 void VirtualDevice::set_target(const Vec3& target, std::uint32_t buttons) noexcept {
-  tx_.store(target.x(), std::memory_order_relaxed);
-  ty_.store(target.y(), std::memory_order_relaxed);
-  tz_.store(target.z(), std::memory_order_relaxed);
-  buttons_.store(buttons, std::memory_order_release);
+  target_.write_slot() = Target{target.x(), target.y(), target.z(), buttons};
+  target_.publish();
 }
 
 DeviceStatus VirtualDevice::read(double t, DevicePose& pose) noexcept {
-  const std::uint32_t buttons = buttons_.load(std::memory_order_acquire);
-  const Vec3 target(tx_.load(std::memory_order_relaxed), ty_.load(std::memory_order_relaxed),
-                    tz_.load(std::memory_order_relaxed));
+  target_.update();
+  const Target& latest = target_.read();
+  const std::uint32_t buttons = latest.buttons;
+  const Vec3 target(latest.x, latest.y, latest.z);
   if (last_t_ < 0.0 || omega_ == 0.0) {
     position_ = target;
     velocity_.setZero();

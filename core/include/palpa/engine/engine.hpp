@@ -38,6 +38,8 @@ struct Sample {
   bool fault = false;          ///< device error, stall, pause: the force is ramping to zero
 };
 
+class RealtimeLoop;
+
 class Engine {
  public:
   /// The scene must outlive the engine. Sizes everything; ticks allocate nothing.
@@ -47,13 +49,6 @@ class Engine {
   /// shutdown, watchdog) ramps the force to zero like a device error.
   Sample tick(double t, bool overrun = false, bool hold_fault = false) noexcept;
 
-  /// Switches, applied between ticks (the real-time loop applies them from its command queue).
-  void set_shear(bool on) { options_.shear = on; options_.probe.force.shear = on; }
-  void set_dynamics(bool on) {
-    options_.dynamics = on;
-    for (auto& body : drawn_) body.set_dynamics(on);
-  }
-
   std::size_t body_count() const { return drawn_.size(); }
   const deform::DeformedBody& drawn(std::size_t body) const { return drawn_[body]; }
   const EngineOptions& options() const { return options_; }
@@ -61,6 +56,15 @@ class Engine {
   Device& device() { return *device_; }
 
  private:
+  // Switches, applied between ticks only: while a RealtimeLoop runs the engine they reach
+  // it through the loop's command queue, so nothing else may call them.
+  friend class RealtimeLoop;
+  void set_shear(bool on) { options_.shear = on; options_.probe.force.shear = on; }
+  void set_dynamics(bool on) {
+    options_.dynamics = on;
+    for (auto& body : drawn_) body.set_dynamics(on);
+  }
+
   const scene::Scene* scene_;
   Device* device_;
   EngineOptions options_;

@@ -44,11 +44,12 @@ class RealtimeLoop {
   RealtimeLoop& operator=(const RealtimeLoop&) = delete;
 
   /// Starts the haptic thread and returns one line saying how it is scheduled (real-time
-  /// priority granted, or refused and why).
+  /// priority granted, or refused and why). start() and stop() belong to one owner thread.
   std::string start();
   /// Ramps the force to zero over the safety ramp time, then stops the thread and joins.
   void stop();
   /// While paused the force ramps to zero and stays there; the probe is still tracked.
+  /// The same state as the Pause / Resume commands.
   void pause(bool paused) { paused_.store(paused, std::memory_order_release); }
   bool running() const { return running_.load(std::memory_order_acquire); }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "palpa/engine/device.hpp"
+#include "palpa/engine/triple_buffer.hpp"
 
 namespace palpa::engine {
 
@@ -19,7 +20,8 @@ class VirtualDevice final : public Device {
   DeviceStatus read(double t, DevicePose& pose) noexcept override;
   DeviceStatus write_force(const Vec3& force) noexcept override;
 
-  /// From any thread: where the probe should go (m) and the buttons.
+  /// From one other thread (the GUI): where the probe should go (m) and the buttons. The
+  /// haptic thread always sees a whole target, never x from one call and y from another.
   void set_target(const Vec3& target, std::uint32_t buttons = 0) noexcept;
   /// The last force the engine wrote (for display).
   Vec3 last_force() const noexcept;
@@ -27,8 +29,11 @@ class VirtualDevice final : public Device {
  private:
   DeviceCapabilities caps_;
   double omega_;  // natural frequency of the critically damped follower
-  std::atomic<double> tx_{0.0}, ty_{0.0}, tz_{0.0};
-  std::atomic<std::uint32_t> buttons_{0};
+  struct Target {
+    double x = 0.0, y = 0.0, z = 0.0;
+    std::uint32_t buttons = 0;
+  };
+  TripleBuffer<Target> target_{Target{}};
   std::atomic<double> fx_{0.0}, fy_{0.0}, fz_{0.0};
   Vec3 position_ = Vec3::Zero();
   Vec3 velocity_ = Vec3::Zero();
