@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libopencv-dev
+  libopencv-dev libsqlite3-dev sqlite3
 )
 
 missing=()

@@ -1,0 +1,49 @@
+#pragma once
+// The writer thread of a live session: drains the haptic loop's sample ring into a
+// SessionWriter and commits every `commit_interval` seconds, so a crash loses at most that
+// much. Events come from the GUI thread (event() takes a mutex: never call it from the
+// haptic thread).
+#include <atomic>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "palpa/engine/realtime_loop.hpp"
+#include "palpa/session/session_writer.hpp"
+
+namespace palpa::session {
+
+class SessionRecorder {
+ public:
+  SessionRecorder(engine::RealtimeLoop& loop, SessionWriter& writer, double commit_interval = 0.25);
+  ~SessionRecorder();  ///< stops (without finishing the session)
+  SessionRecorder(const SessionRecorder&) = delete;
+  SessionRecorder& operator=(const SessionRecorder&) = delete;
+
+  void start();
+  /// Queues an event; written in time order with the samples at the next drain.
+  void event(const Event& event);
+  /// Drains what the loop produced so far, writes queued events, stores the loop statistics
+  /// and commits; then the thread ends. Call after RealtimeLoop::stop().
+  void stop();
+  /// Writes the End event if none was queued, stops, and finishes the file.
+  void finish(double t_end, const std::string& note = {});
+
+  /// The first error the writer thread met (empty if none): recording stops, the file keeps
+  /// what was committed.
+  std::string error() const;
+
+ private:
+  void run();
+  void drain();
+  engine::RealtimeLoop* loop_;
+  SessionWriter* writer_;
+  double commit_interval_;
+  mutable std::mutex mutex_;
+  std::vector<Event> pending_events_;
+  std::string error_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace palpa::session

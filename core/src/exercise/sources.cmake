@@ -1,0 +1,1 @@
+# Sources of core/exercise (see core/CMakeLists.txt).

@@ -1,0 +1,1 @@
+# Sources of core/score (see core/CMakeLists.txt).

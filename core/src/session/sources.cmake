@@ -1,0 +1,1 @@
+# Sources of core/session (see core/CMakeLists.txt).

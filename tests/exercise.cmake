@@ -1,0 +1,1 @@
+# Test targets of the exercise module (included by tests/CMakeLists.txt).

@@ -1,0 +1,1 @@
+# Test targets of the report module (included by tests/CMakeLists.txt).

@@ -1,0 +1,1 @@
+# Test targets of the score module (included by tests/CMakeLists.txt).

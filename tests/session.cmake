@@ -1,0 +1,1 @@
+# Test targets of the session module (included by tests/CMakeLists.txt).
