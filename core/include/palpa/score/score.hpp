@@ -69,6 +69,7 @@ struct BodyMap {
   std::string body;
   int rows = 0, cols = 0;       ///< cells along u and v
   std::vector<double> area;     ///< m^2 per cell (0 outside the exam region), rows*cols row-major
+  std::vector<std::array<float, 3>> center;  ///< m: the top-contour point at each cell's centre (for top-down maps)
   std::vector<std::uint8_t> level;  ///< deepest pressure reached per cell: 0 untouched, 1 light, 2 medium, 3 deep
   std::vector<float> dwell_s;   ///< contact time attributed to each cell
   std::vector<float> peak_force_n;  ///< largest force while the cell was under the pad
