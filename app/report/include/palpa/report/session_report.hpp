@@ -1,0 +1,25 @@
+#pragma once
+// Writes the report files of one session into a folder: STEM.html, STEM.json,
+// STEM.xapi.json and optionally STEM.csv (header + one row).
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "palpa/report/session_header.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session.hpp"
+
+namespace palpa::report {
+
+struct ReportFiles {
+  bool html = true, json = true, xapi = true, csv = true;
+};
+
+/// Creates `dir` if needed. Throws std::runtime_error "PATH: cannot write" on failure.
+void write_session_report(const std::filesystem::path& dir, const std::string& stem, const SessionHeader& header,
+                          const session::Session& session, const score::Score& score, const ReportFiles& files = {});
+
+/// Writes `text` to `path` (replacing it); throws std::runtime_error "PATH: cannot write".
+void write_text(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace palpa::report

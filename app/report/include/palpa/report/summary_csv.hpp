@@ -1,0 +1,22 @@
+#pragma once
+// One CSV row per scored session. The header is a contract with users' scripts: add
+// columns only at the end, never rename or reorder.
+#include <string>
+
+#include "palpa/report/session_header.hpp"
+#include "palpa/score/score.hpp"
+
+namespace palpa::report {
+
+/// "file,session_id,trainee,case,started_at,passed,score,...,complete,samples" (no newline).
+const std::string& csv_header();
+
+/// The row for one session (no newline): passed, safe and complete as 1/0; score 0..1;
+/// localization_error_mm the mean over found tumours, empty when none was found; numbers
+/// in their shortest exact form; text fields quoted per RFC 4180.
+std::string csv_row(const SessionHeader& header, const score::Score& score);
+
+/// Mean localization error over found tumours (mm); NaN when none was found.
+double mean_localization_error_mm(const score::Score& score);
+
+}  // namespace palpa::report

@@ -1,0 +1,68 @@
+#include "palpa/report/summary_csv.hpp"
+
+#include <limits>
+
+#include "palpa/report/encoding.hpp"
+
+namespace palpa::report {
+
+const std::string& csv_header() {
+  static const std::string kHeader =
+      "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
+      "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
+      "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples";
+  return kHeader;
+}
+
+double mean_localization_error_mm(const score::Score& score) {
+  if (score.localization_error_mm.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  for (const double e : score.localization_error_mm) sum += e;
+  return sum / static_cast<double>(score.localization_error_mm.size());
+}
+
+std::string csv_row(const SessionHeader& h, const score::Score& s) {
+  std::string row;
+  auto text = [&row](std::string_view v) {
+    if (!row.empty()) row += ',';
+    row += csv_field(v);
+  };
+  auto number = [&row](double v) {
+    row += ',';
+    row += number_text(v);
+  };
+  auto flag = [&row](bool v) { row += v ? ",1" : ",0"; };
+  text(h.file);
+  row += ',';
+  row += csv_field(h.id);
+  row += ',';
+  row += csv_field(h.trainee);
+  row += ',';
+  row += csv_field(h.case_title);
+  row += ',';
+  row += csv_field(h.started_at);
+  flag(s.passed);
+  number(s.score);
+  number(s.sensitivity);
+  row += ',';
+  row += std::to_string(s.false_positives);
+  number(mean_localization_error_mm(s));
+  number(s.coverage);
+  number(s.deep_coverage);
+  number(s.duration_s);
+  number(s.contact_time_s);
+  number(s.peak_force_n);
+  flag(s.safe);
+  number(s.palpate_search_ratio);
+  row += ',';
+  row += csv_field(s.pattern.kind);
+  number(s.pressure.light_s);
+  number(s.pressure.medium_s);
+  number(s.pressure.deep_s);
+  flag(s.complete);
+  row += ',';
+  row += std::to_string(s.samples);
+  return row;
+}
+
+}  // namespace palpa::report
