@@ -1,0 +1,289 @@
+// palpa-cli batch PATH... --out DIR [--jobs N] [--reports]: scores many sessions in a pool
+// of threads and writes a summary CSV, each trainee's learning curve (CSV, PNG, CUSUM of
+// failures) and a cohort page. Unreadable sessions are reported and skipped.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "commands.hpp"
+#include "palpa/report/cohort.hpp"
+#include "palpa/report/encoding.hpp"
+#include "palpa/report/images.hpp"
+#include "palpa/report/learning_curve.hpp"
+#include "palpa/report/session_report.hpp"
+#include "palpa/report/summary_csv.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session_reader.hpp"
+
+namespace palpa::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BatchOptions {
+  std::vector<std::string> paths;
+  std::string out;
+  int jobs = 0;  ///< 0: all cores
+  bool reports = false;
+};
+
+struct Input {
+  std::string file;  ///< as found (the given spelling, or folder / relative path)
+  std::string stem;  ///< unique among the inputs: names the per-session report files
+  std::string error; ///< set when the path could not even be listed
+};
+
+/// One scored session as kept until the end: no samples, no maps.
+struct Scored {
+  report::SessionHeader header;
+  score::Score score;
+};
+
+struct Outcome {
+  std::optional<Scored> scored;
+  std::string error;  ///< one line when skipped
+};
+
+/// Explicit files whatever their extension; folders searched recursively for *.palpa.
+/// De-duplicated by canonical path, sorted by name so runs are reproducible.
+std::vector<Input> collect_inputs(const std::vector<std::string>& paths) {
+  std::map<std::string, Input> by_key;  // canonical path -> input
+  auto add = [&by_key](const fs::path& p, std::string error = {}) {
+    std::error_code ec;
+    auto key = fs::weakly_canonical(p, ec).string();
+    if (ec) key = p.lexically_normal().string();
+    by_key.try_emplace(key, Input{p.string(), {}, std::move(error)});
+  };
+  for (const auto& given : paths) {
+    const fs::path p(given);
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      std::vector<fs::path> found;
+      fs::recursive_directory_iterator it(p, fs::directory_options::skip_permission_denied, ec), end;
+      for (; !ec && it != end; it.increment(ec)) {
+        std::error_code type_ec;
+        if (it->path().extension() == ".palpa" && it->is_regular_file(type_ec)) found.push_back(it->path());
+      }
+      if (ec) add(p, given + ": folder: cannot be listed: " + ec.message());
+      for (const auto& f : found) add(f);
+    } else if (fs::exists(p, ec)) {
+      add(p);
+    } else {
+      add(p, given + ": file: does not exist");
+    }
+  }
+  std::vector<Input> inputs;
+  for (auto& [key, input] : by_key) inputs.push_back(std::move(input));
+  std::sort(inputs.begin(), inputs.end(), [](const Input& a, const Input& b) { return a.file < b.file; });
+  // Report stems: the file's stem, numbered when two files share it.
+  std::map<std::string, int> seen;
+  for (auto& input : inputs) {
+    std::string stem = fs::path(input.file).stem().string();
+    if (stem.empty()) stem = "session";
+    const int n = ++seen[stem];
+    if (n > 1) stem += "-" + std::to_string(n);
+    input.stem = stem;
+  }
+  return inputs;
+}
+
+/// Progress on stderr: a bar redrawn in place on a terminal, nothing otherwise. Error lines
+/// go through it so they do not tear the bar.
+class Progress {
+ public:
+  explicit Progress(std::size_t total) : total_(total), tty_(isatty(STDERR_FILENO) == 1) {}
+  void error(const std::string& message) {
+    std::lock_guard lock(mutex_);
+    if (tty_) std::fputs("\r\033[K", stderr);
+    print_error(message);
+    draw();
+  }
+  void done() {
+    std::lock_guard lock(mutex_);
+    ++done_;
+    draw();
+  }
+  void finish() {
+    std::lock_guard lock(mutex_);
+    if (tty_) std::fputs("\r\033[K", stderr);
+  }
+
+ private:
+  void draw() {
+    if (!tty_ || total_ == 0) return;
+    constexpr std::size_t kWidth = 40;
+    const std::size_t filled = done_ * kWidth / total_;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu sessions", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), done_, total_);
+    std::fflush(stderr);
+  }
+  std::mutex mutex_;
+  std::size_t total_, done_ = 0;
+  bool tty_;
+};
+
+std::string one_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+/// Reads and scores one session (and writes its report files); the samples are dropped on return.
+Outcome process(const Input& input, const fs::path& sessions_dir, bool reports, std::string& output_error) {
+  Outcome outcome;
+  if (!input.error.empty()) {
+    outcome.error = input.error;
+    return outcome;
+  }
+  try {
+    const auto session = session::read_session(input.file);
+    auto score = score::score_session(session, input.file);
+    auto header = report::header_of(session.info, input.file);
+    if (reports) {
+      try {
+        report::write_session_report(sessions_dir, input.stem, header, session, score,
+                                     {true, true, true, false});
+      } catch (const std::exception& e) {
+        output_error = e.what();
+      }
+    }
+    score.maps.clear();  // the batch keeps only what its tables need
+    score.maps.shrink_to_fit();
+    outcome.scored = Scored{std::move(header), std::move(score)};
+  } catch (const session::SessionError& e) {
+    outcome.error = one_line(e.what());
+  } catch (const std::exception& e) {
+    outcome.error = one_line(input.file + ": score: " + e.what());
+  }
+  return outcome;
+}
+
+int run_batch(const BatchOptions& o) {
+  const auto inputs = collect_inputs(o.paths);
+  const fs::path out(o.out);
+  std::error_code ec;
+  fs::create_directories(out / "trainees", ec);
+  if (!ec && o.reports) fs::create_directories(out / "sessions", ec);
+  if (ec) {
+    print_error(o.out + ": cannot create the output folder: " + ec.message());
+    return kFailure;
+  }
+
+  // The pool: each worker takes the next file, reads and scores it, keeps the summary.
+  std::vector<Outcome> outcomes(inputs.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex output_mutex;
+  std::string output_failure;
+  Progress progress(inputs.size());
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t jobs =
+      std::clamp<std::size_t>(o.jobs > 0 ? static_cast<std::size_t>(o.jobs) : cores, 1, std::max<std::size_t>(1, inputs.size()));
+  auto work = [&] {
+    for (std::size_t i = next++; i < inputs.size(); i = next++) {
+      std::string output_error;
+      outcomes[i] = process(inputs[i], out / "sessions", o.reports, output_error);
+      if (!output_error.empty()) {
+        std::lock_guard lock(output_mutex);
+        if (output_failure.empty()) output_failure = output_error;
+      }
+      if (!outcomes[i].error.empty()) progress.error(outcomes[i].error);
+      progress.done();
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t k = 1; k < jobs; ++k) pool.emplace_back(work);
+    work();
+  }
+  progress.finish();
+
+  std::vector<Scored> scored;
+  std::vector<report::SkippedFile> skipped;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (outcomes[i].scored) {
+      scored.push_back(std::move(*outcomes[i].scored));
+    } else {
+      skipped.push_back({inputs[i].file, outcomes[i].error});
+    }
+  }
+  std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
+    return std::tie(a.header.trainee, a.header.started_at, a.header.file) <
+           std::tie(b.header.trainee, b.header.started_at, b.header.file);
+  });
+
+  try {
+    std::string summary = report::csv_header() + "\n";
+    for (const auto& s : scored) summary += report::csv_row(s.header, s.score) + "\n";
+    report::write_text(out / "summary.csv", summary);
+    std::string errors = "file,error\n";
+    for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
+    report::write_text(out / "errors.csv", errors);
+
+    std::vector<report::TraineeCurve> curves;
+    for (std::size_t begin = 0; begin < scored.size();) {
+      std::size_t end = begin;
+      report::TraineeCurve curve;
+      curve.trainee = scored[begin].header.trainee;
+      curve.file_stem = report::trainee_file_stem(curve.trainee);
+      std::vector<bool> passed;
+      for (; end < scored.size() && scored[end].header.trainee == curve.trainee; ++end) {
+        curve.attempts.push_back(report::attempt_of(scored[end].header, scored[end].score));
+        passed.push_back(scored[end].score.passed);
+      }
+      curve.cusum = report::failure_cusum(passed);
+      report::write_text(out / "trainees" / (curve.file_stem + ".csv"), report::trainee_csv(curve.attempts, curve.cusum));
+      curve.png = report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum));
+      report::write_text(out / "trainees" / (curve.file_stem + ".png"),
+                         std::string_view(reinterpret_cast<const char*>(curve.png.data()), curve.png.size()));
+      curves.push_back(std::move(curve));
+      begin = end;
+    }
+    report::write_text(out / "cohort.html", report::cohort_html(curves, skipped));
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+  if (!output_failure.empty()) {
+    print_error(output_failure);
+    return kFailure;
+  }
+  std::fprintf(stderr, "batch: %zu of %zu sessions scored, %zu skipped; wrote %s\n", scored.size(), inputs.size(),
+               skipped.size(), (out / "summary.csv").c_str());
+  if (inputs.empty()) {
+    print_error("no session files found (folders are searched for *.palpa)");
+    return kBadInput;
+  }
+  return skipped.empty() ? kOk : kBadInput;
+}
+
+}  // namespace
+
+Command add_batch_command(CLI::App& parent) {
+  auto o = std::make_shared<BatchOptions>();
+  auto* app = parent.add_subcommand(
+      "batch", "Score many sessions: PATHs are session files (any extension) or folders searched recursively for "
+               "*.palpa. Writes DIR/summary.csv (one row per session, by trainee then start time), DIR/errors.csv "
+               "(skipped files), DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures) and "
+               "DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
+               "still written), 1 when an output could not be written.");
+  app->add_option("PATH", o->paths, "session files or folders")->required();
+  app->add_option("--out", o->out, "output folder (created if needed)")->required();
+  app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(CLI::Range(1, 1024));
+  app->add_flag("--reports", o->reports, "also write DIR/sessions/STEM.html, STEM.json and STEM.xapi.json per session");
+  return {app, [o] { return run_batch(*o); }};
+}
+
+}  // namespace palpa::cli

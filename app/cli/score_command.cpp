@@ -1,0 +1,74 @@
+// palpa-cli score SESSION [--json] [--report DIR]: scores one recorded session against its
+// case's hidden truth; prints the score card or the report JSON, and can write the report
+// files (HTML, JSON, xAPI, CSV).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "commands.hpp"
+#include "palpa/report/report_json.hpp"
+#include "palpa/report/session_report.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session_reader.hpp"
+
+namespace palpa::cli {
+namespace {
+
+struct ScoreOptions {
+  std::string session;
+  bool json = false;
+  std::string report_dir;
+};
+
+int run_score(const ScoreOptions& o) {
+  const std::filesystem::path path(o.session);
+  session::Session session;
+  score::Score score;
+  try {
+    session = session::read_session(path);
+    score = score::score_session(session, path.string());
+  } catch (const session::SessionError& e) {
+    print_error(e.what());
+    return kBadInput;
+  }
+  const auto header = report::header_of(session.info, path);
+  if (o.json) {
+    std::printf("%s\n", report::report_json(header, score).dump(2).c_str());
+  } else {
+    std::fputs(score::summary_text(score).c_str(), stdout);
+  }
+  std::fflush(stdout);
+  if (!o.report_dir.empty()) {
+    try {
+      report::write_session_report(o.report_dir, path.stem().string(), header, session, score);
+    } catch (const std::exception& e) {
+      print_error(e.what());
+      return kFailure;
+    }
+    if (!o.json) {
+      const auto stem = (std::filesystem::path(o.report_dir) / path.stem()).string();
+      std::printf("report: %s.html (.json, .xapi.json, .csv)\n", stem.c_str());
+    }
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Command add_score_command(CLI::App& parent) {
+  auto o = std::make_shared<ScoreOptions>();
+  auto* app = parent.add_subcommand(
+      "score", "Score a recorded session against its case's hidden tumours: sensitivity, false positives, "
+               "localization error, coverage, deep coverage, pressure, search pattern, duration, peak force; "
+               "pass/fail by gates. Exit 0 when scored (passed or failed), 2 for an unreadable session.");
+  app->add_option("SESSION", o->session, "session file (.palpa)")->required();
+  app->add_flag("--json", o->json, "print the report as JSON (score and session) instead of the score card");
+  app->add_option("--report", o->report_dir,
+                  "also write DIR/STEM.html (self-contained page with maps), STEM.json, STEM.xapi.json (xAPI "
+                  "statement) and STEM.csv, STEM being the session file's stem");
+  return {app, [o] { return run_score(*o); }};
+}
+
+}  // namespace palpa::cli
