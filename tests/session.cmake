@@ -1,1 +1,12 @@
 # Test targets of the session module (included by tests/CMakeLists.txt).
+find_package(SQLite3 REQUIRED)  # the tests damage session files on purpose, through SQLite
+add_executable(session_tests
+  core/session_roundtrip_test.cpp
+  core/session_crash_test.cpp
+  core/session_corrupt_test.cpp
+  core/session_recorder_test.cpp
+)
+target_link_libraries(session_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)
+target_compile_definitions(session_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+palpa_warnings(session_tests)
+gtest_discover_tests(session_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

@@ -249,11 +249,18 @@ struct Row {
     }
     const std::int64_t value = sqlite3_column_int64(stmt, column);
     if (value < lo || value > hi) {
-      std::string reason = std::to_string(value);
-      reason += " is outside ";
-      reason += std::to_string(lo);
-      reason += "..";
-      reason += std::to_string(hi);
+      std::string reason = "must be ";
+      if (hi == std::numeric_limits<std::int64_t>::max()) {
+        reason += ">= ";
+        reason += std::to_string(lo);
+      } else {
+        reason += "in ";
+        reason += std::to_string(lo);
+        reason += "..";
+        reason += std::to_string(hi);
+      }
+      reason += ", not ";
+      reason += std::to_string(value);
       throw SessionError(file, where(name), reason);
     }
     return value;
