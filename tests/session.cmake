@@ -18,3 +18,14 @@ if(PALPA_BUILD_BENCHMARKS)
   target_compile_definitions(session_bench PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   palpa_warnings(session_bench)
 endif()
+
+# A finished session read with nothing but Python's standard sqlite3 module.
+add_executable(session_example core/session_example_main.cpp)
+target_link_libraries(session_example PRIVATE palpa_core)
+palpa_warnings(session_example)
+find_program(PALPA_SESSION_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT PALPA_SESSION_PYTHON)
+  find_program(PALPA_SESSION_PYTHON NAMES python3 REQUIRED)
+endif()
+add_test(NAME cli.session_python COMMAND ${PALPA_SESSION_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_session_python.py
+         --example $<TARGET_FILE:session_example> --repo ${PROJECT_SOURCE_DIR})

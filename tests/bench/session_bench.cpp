@@ -1,6 +1,6 @@
 // Session file throughput: samples appended per second (with a commit every 250 samples,
 // as the recorder does at 1 kHz), samples read per second, and bytes per sample.
-//   cmake --build build/release --target session_bench && build/release/tests/bench/session_bench
+//   cmake --build build/release --target session_bench && build/release/tests/session_bench
 #include <benchmark/benchmark.h>
 #include <stdlib.h>
 
