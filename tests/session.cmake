@@ -23,9 +23,5 @@ endif()
 add_executable(session_example core/session_example_main.cpp)
 target_link_libraries(session_example PRIVATE palpa_core)
 palpa_warnings(session_example)
-find_program(PALPA_SESSION_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
-if(NOT PALPA_SESSION_PYTHON)
-  find_program(PALPA_SESSION_PYTHON NAMES python3 REQUIRED)
-endif()
-add_test(NAME cli.session_python COMMAND ${PALPA_SESSION_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_session_python.py
+add_test(NAME cli.session_python COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_session_python.py
          --example $<TARGET_FILE:session_example> --repo ${PROJECT_SOURCE_DIR})
