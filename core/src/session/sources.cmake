@@ -1,1 +1,8 @@
 # Sources of core/session (see core/CMakeLists.txt).
+target_sources(palpa_core PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/session.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sqlite_util.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/session_writer.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/session_reader.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/session_recorder.cpp
+)

@@ -42,6 +42,7 @@ class SessionRecorder {
   mutable std::mutex mutex_;
   std::vector<Event> pending_events_;
   std::string error_;
+  bool end_queued_ = false;  ///< an End event was queued (finish() adds none then)
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

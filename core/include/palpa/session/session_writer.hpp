@@ -29,6 +29,8 @@ class SessionWriter {
   void event(const Event& event);
   /// Stores (replaces) the loop statistics summary.
   void set_loop_stats(const engine::LoopStats& stats);
+  /// Stores (replaces) a summary already in the file's JSON form (copying a session).
+  void set_loop_stats(const nlohmann::json& summary);
   /// Ends the open transaction (durable against a crash of this process) and opens the next.
   void commit();
   /// Commits, checkpoints the WAL into the main file and closes. Call after the End event.

@@ -1,0 +1,366 @@
+#include "palpa/session/session_reader.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <string_view>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/io/json_text.hpp"
+#include "sqlite_util.hpp"
+
+namespace palpa::session {
+namespace {
+
+std::string hex32(std::uint32_t value) {
+  std::array<char, 16> text{};
+  std::snprintf(text.data(), text.size(), "0x%08X", value);
+  return text.data();
+}
+
+/// Reads one session file; every failure is a SessionError naming the file and the place.
+class Reader {
+ public:
+  Reader(const std::filesystem::path& path) : file_(path.string()) {}
+  ~Reader() {
+    if (db_ != nullptr) sqlite3_close_v2(db_);
+  }
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  Session read(const std::filesystem::path& path, const ReadOptions& options);
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
+    throw SessionError(file_, where, reason);
+  }
+  [[noreturn]] void fail_sqlite(const std::string& where, int rc) const;
+  void check_file(const std::filesystem::path& path) const;
+  void open();
+  void check_identity();
+  bool has_table(const char* name);
+  void read_meta(Session& session);
+  void read_events(Session& session);
+  void read_samples(Session& session);
+
+  detail::Statement prepare(const std::string& where, const char* sql) {
+    try {
+      return detail::Statement(db_, sql);
+    } catch (const std::runtime_error&) {
+      fail_sqlite(where, sqlite3_extended_errcode(db_));
+    }
+  }
+  /// Steps a query: true for a row, false at the end; throws on anything else.
+  bool step(const detail::Statement& statement, const std::string& where) const {
+    const int rc = sqlite3_step(statement.get());
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    fail_sqlite(where, rc);
+  }
+
+  std::string file_;
+  sqlite3* db_ = nullptr;
+  std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
+};
+
+void Reader::fail_sqlite(const std::string& where, int rc) const {
+  const std::string message = db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+  switch (rc & 0xFF) {
+    case SQLITE_NOTADB: fail("file", "not a Palpa session (not an SQLite database)");
+    case SQLITE_CORRUPT: fail(where, "damaged file (" + message + "): it was cut short or overwritten");
+    case SQLITE_CANTOPEN: fail("file", "cannot open (" + message + ")");
+    case SQLITE_NOMEM: fail(where, "out of memory");
+    default: fail(where, message);
+  }
+}
+
+void Reader::check_file(const std::filesystem::path& path) const {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) fail("file", "no such file");
+  if (ec) fail("file", ec.message());
+  if (status.type() == std::filesystem::file_type::directory) fail("file", "is a folder, not a session file");
+  if (status.type() != std::filesystem::file_type::regular) fail("file", "not a regular file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) fail("file", ec.message());
+  if (size == 0) fail("file", "not a Palpa session (empty file)");
+  // SQLite takes any file to be a database until it reads it; say plainly what is not.
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("file", "cannot open for reading");
+  std::array<char, 16> magic{};
+  in.read(magic.data(), static_cast<std::streamsize>(magic.size()));
+  if (in.gcount() != static_cast<std::streamsize>(magic.size()) ||
+      std::string_view(magic.data(), magic.size()) != std::string_view("SQLite format 3\0", 16)) {
+    fail("file", "not a Palpa session (not an SQLite database)");
+  }
+}
+
+void Reader::open() {
+  // Read-only: a session is evidence and is never changed by reading it. A session cut
+  // short still has its -wal (and -shm) beside it; SQLite reads the committed part of it.
+  const int rc = sqlite3_open_v2(file_.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
+  if (rc != SQLITE_OK) fail_sqlite("file", rc);
+  sqlite3_extended_result_codes(db_, 1);
+  sqlite3_busy_timeout(db_, 2000);  // a writer mid-commit: wait briefly, never hang
+  // A hostile file may carry views or triggers: run nothing it defines.
+  sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+  sqlite3_db_config(db_, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
+  std::string error;
+  if (const int pragma = detail::exec(db_, "PRAGMA cell_size_check=ON", error); pragma != SQLITE_OK) {
+    fail_sqlite("file", pragma);
+  }
+}
+
+bool Reader::has_table(const char* name) {
+  auto query = prepare("file", "SELECT 1 FROM sqlite_schema WHERE type = 'table' AND name = ?");
+  sqlite3_bind_text(query.get(), 1, name, -1, SQLITE_STATIC);
+  return step(query, "file");
+}
+
+void Reader::check_identity() {
+  auto query = prepare("file", "PRAGMA application_id");
+  if (!step(query, "file")) fail("file", "not a Palpa session (no application_id)");
+  const auto id = static_cast<std::uint32_t>(sqlite3_column_int(query.get(), 0));
+  if (id != static_cast<std::uint32_t>(detail::kApplicationId)) {
+    if (!has_table("meta")) fail("file", "not a Palpa session (an SQLite database without Palpa's tables)");
+    fail("application_id", "not a Palpa session (application_id is " + hex32(id) + ", a session has " +
+                               hex32(static_cast<std::uint32_t>(detail::kApplicationId)) + " 'PALP')");
+  }
+  for (const char* table : {"meta", "samples", "events"}) {
+    if (!has_table(table)) fail(table, "table is missing");
+  }
+}
+
+template <typename T>
+bool parse_number(const std::string& text, T& out) {
+  const char* end = text.data() + text.size();
+  const auto result = std::from_chars(text.data(), end, out);
+  return result.ec == std::errc() && result.ptr == end && !text.empty();
+}
+
+void Reader::read_meta(Session& session) {
+  std::map<std::string, std::string> meta;
+  auto query = prepare("meta", "SELECT key, value FROM meta");
+  while (step(query, "meta")) {
+    if (sqlite3_column_type(query.get(), 0) == SQLITE_NULL) continue;
+    const std::string key(reinterpret_cast<const char*>(sqlite3_column_text(query.get(), 0)));
+    if (sqlite3_column_type(query.get(), 1) == SQLITE_NULL) fail("meta " + key, "no value (NULL)");
+    const auto* value = reinterpret_cast<const char*>(sqlite3_column_text(query.get(), 1));
+    meta[key] = std::string(value, static_cast<std::size_t>(sqlite3_column_bytes(query.get(), 1)));
+  }
+  const auto get = [&](const char* key) -> const std::string& {
+    const auto it = meta.find(key);
+    if (it == meta.end()) fail(std::string("meta ") + key, "missing");
+    return it->second;
+  };
+
+  if (get("format") != kFormat) fail("meta format", "not a Palpa session (format is '" + get("format") + "')");
+  int version = 0;
+  if (!parse_number(get("format_version"), version)) {
+    fail("meta format_version", "not an integer: '" + get("format_version") + "'");
+  }
+  if (version > kFormatVersion) {
+    std::string reason = "format version ";
+    reason += std::to_string(version);
+    reason += " is newer than this Palpa reads (";
+    reason += std::to_string(kFormatVersion);
+    reason += ")";
+    fail("meta format_version", reason);
+  }
+  if (version < 1) fail("meta format_version", "format version " + std::to_string(version) + " does not exist");
+
+  auto& info = session.info;
+  info.id = get("id");
+  info.trainee = get("trainee");
+  info.device = get("device");
+  info.software_version = get("software_version");
+  info.started_at = get("started_at");
+  info.case_source = get("case_source");
+  if (!parse_number(get("rate_hz"), info.rate_hz) || !std::isfinite(info.rate_hz) || info.rate_hz <= 0.0) {
+    fail("meta rate_hz", "not a finite number > 0: '" + get("rate_hz") + "'");
+  }
+  if (const auto it = meta.find("seed"); it != meta.end()) {
+    std::uint64_t seed = 0;
+    if (!parse_number(it->second, seed)) fail("meta seed", "not an unsigned 64-bit integer: '" + it->second + "'");
+    info.seed = seed;
+  }
+
+  const std::string& case_text = get("case");
+  if (case_text.size() > io::CaseLimits::kMaxFileBytes) fail("meta case", "too large for a case");
+  try {
+    auto parsed = io::parse_case(case_text, file_ + ": meta case");
+    bodies_ = parsed.bodies.size();
+    info.case_document = std::move(parsed.document);
+  } catch (const io::CaseError& e) {
+    const auto& problems = e.problems();
+    if (problems.empty()) fail("meta case", e.what());
+    fail("meta case " + problems.front().where, problems.front().reason);
+  }
+
+  const auto json = [&](const char* key, const std::string& text) {
+    nlohmann::json out;
+    if (const auto problem = io::parse_json_text(text, io::CaseLimits::kMaxDepth, io::CaseLimits::kMaxValues, out)) {
+      fail(std::string("meta ") + key, problem->where + ": " + problem->reason);
+    }
+    return out;
+  };
+  info.extra = json("extra", get("extra"));
+  if (const auto it = meta.find("loop_stats"); it != meta.end()) session.loop_stats = json("loop_stats", it->second);
+}
+
+// Column checks shared by events and samples: `where` is only built when something is wrong.
+struct Row {
+  const std::string& file;
+  sqlite3_stmt* stmt;
+  const char* table;     // "samples" or "events"
+  const char* key_name;  // "tick" or "id"
+  std::int64_t key = 0;
+
+  std::string where(const char* column) const {
+    std::string w = table;
+    w += ' ';
+    w += key_name;
+    w += ' ';
+    w += std::to_string(key);
+    if (column != nullptr) {
+      w += ": column ";
+      w += column;
+    }
+    return w;
+  }
+  bool is_null(int column) const { return sqlite3_column_type(stmt, column) == SQLITE_NULL; }
+  double real(int column, const char* name) const {
+    const int type = sqlite3_column_type(stmt, column);
+    if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) {
+      throw SessionError(file, where(name), type == SQLITE_NULL ? "missing (NULL)" : "not a number");
+    }
+    const double value = sqlite3_column_double(stmt, column);
+    if (!std::isfinite(value)) throw SessionError(file, where(name), "not a finite number");
+    return value;
+  }
+  std::int64_t integer(int column, const char* name, std::int64_t lo, std::int64_t hi) const {
+    const int type = sqlite3_column_type(stmt, column);
+    if (type != SQLITE_INTEGER) {
+      throw SessionError(file, where(name), type == SQLITE_NULL ? "missing (NULL)" : "not an integer");
+    }
+    const std::int64_t value = sqlite3_column_int64(stmt, column);
+    if (value < lo || value > hi) {
+      std::string reason = "must be ";
+      if (hi == std::numeric_limits<std::int64_t>::max()) {
+        reason += ">= ";
+        reason += std::to_string(lo);
+      } else {
+        reason += "in ";
+        reason += std::to_string(lo);
+        reason += "..";
+        reason += std::to_string(hi);
+      }
+      reason += ", not ";
+      reason += std::to_string(value);
+      throw SessionError(file, where(name), reason);
+    }
+    return value;
+  }
+};
+
+constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
+
+void Reader::read_events(Session& session) {
+  auto query = prepare("events", "SELECT id, t, kind, mark, x, y, z, note FROM events ORDER BY t, id");
+  Row row{file_, query.get(), "events", "id"};
+  while (step(query, "events")) {
+    row.key = sqlite3_column_int64(query.get(), 0);
+    Event e;
+    e.t = row.real(1, "t");
+    const auto* kind_text = sqlite3_column_text(query.get(), 2);
+    const std::string kind = kind_text == nullptr ? std::string() : reinterpret_cast<const char*>(kind_text);
+    const auto kind_value = event_kind_from_string(kind);
+    if (!kind_value) throw SessionError(file_, row.where("kind"), "unknown event kind '" + kind + "'");
+    e.kind = *kind_value;
+    if (e.kind == EventKind::Mark || e.kind == EventKind::Unmark) e.mark = row.integer(3, "mark", 1, kInt64Max);
+    if (e.kind == EventKind::Mark) {
+      e.position = {row.real(4, "x"), row.real(5, "y"), row.real(6, "z")};
+    }
+    if (const auto* note = sqlite3_column_text(query.get(), 7)) {
+      e.note.assign(reinterpret_cast<const char*>(note), static_cast<std::size_t>(sqlite3_column_bytes(query.get(), 7)));
+    }
+    if (e.kind == EventKind::End) session.complete = true;
+    session.events.push_back(std::move(e));
+  }
+}
+
+void Reader::read_samples(Session& session) {
+  static constexpr const char* kColumns =
+      "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
+  if (auto count = prepare("samples", "SELECT count(*) FROM samples"); step(count, "samples")) {
+    session.samples.reserve(static_cast<std::size_t>(sqlite3_column_int64(count.get(), 0)));
+  }
+  auto query = prepare("samples", (std::string(kColumns) + " ORDER BY tick").c_str());
+  Row row{file_, query.get(), "samples", "tick"};
+  const auto max_body = static_cast<std::int64_t>(bodies_) - 1;
+  std::int64_t previous_tick = -1;
+  double previous_t = -std::numeric_limits<double>::infinity();
+  std::string where = "samples";
+  while (true) {
+    const int rc = sqlite3_step(query.get());
+    if (rc == SQLITE_DONE) break;
+    if (rc != SQLITE_ROW) {
+      if (previous_tick >= 0) where = "samples after tick " + std::to_string(previous_tick);
+      fail_sqlite(where, rc);
+    }
+    row.key = sqlite3_column_int64(query.get(), 0);
+    row.integer(0, "tick", previous_tick + 1, kInt64Max);
+    engine::Sample s;
+    s.t = row.real(1, "t");
+    if (s.t < previous_t) {
+      throw SessionError(file_, row.where("t"),
+                         "time goes backwards (" + detail::exact_text(s.t) + " s after " +
+                             detail::exact_text(previous_t) + " s)");
+    }
+    s.position = {row.real(2, "x"), row.real(3, "y"), row.real(4, "z")};
+    s.force = {row.real(5, "fx"), row.real(6, "fy"), row.real(7, "fz")};
+    if (!row.is_null(8)) {
+      if (max_body < 0) throw SessionError(file_, row.where("body"), "the case has no bodies");
+      s.body = static_cast<std::int32_t>(row.integer(8, "body", 0, max_body));
+      s.u = row.real(9, "u");
+      s.v = row.real(10, "v");
+      s.depth = row.real(11, "depth");
+    }
+    s.buttons = static_cast<std::uint32_t>(row.integer(12, "buttons", 0, std::numeric_limits<std::uint32_t>::max()));
+    s.overrun = row.integer(13, "overrun", 0, 1) != 0;
+    s.fault = row.integer(14, "fault", 0, 1) != 0;
+    previous_tick = row.key;
+    previous_t = s.t;
+    session.samples.push_back(s);
+  }
+}
+
+Session Reader::read(const std::filesystem::path& path, const ReadOptions& options) {
+  check_file(path);
+  open();
+  check_identity();
+  Session session;
+  read_meta(session);
+  read_events(session);
+  if (options.samples) {
+    read_samples(session);
+  } else {
+    // Still check the table has the columns a reader needs.
+    prepare("samples",
+            "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples LIMIT 0");
+  }
+  return session;
+}
+
+}  // namespace
+
+Session read_session(const std::filesystem::path& path, const ReadOptions& options) {
+  Reader reader(path);
+  return reader.read(path, options);
+}
+
+}  // namespace palpa::session

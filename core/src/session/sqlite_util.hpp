@@ -1,0 +1,75 @@
+#pragma once
+// Small RAII helpers around the SQLite C API shared by the session writer and reader, and
+// the schema both of them agree on (docs/session-format.md). Internal to core/session.
+#include <sqlite3.h>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace palpa::session::detail {
+
+/// PRAGMA application_id of every session file: the bytes 'PALP'.
+inline constexpr std::int32_t kApplicationId = 0x50414C50;
+
+/// The tables of format version 1 (created by the writer, checked by the reader).
+inline constexpr const char* kSchema = R"sql(
+CREATE TABLE meta(
+  key TEXT PRIMARY KEY,
+  value TEXT NOT NULL
+);
+CREATE TABLE samples(
+  tick INTEGER PRIMARY KEY,
+  t REAL NOT NULL,
+  x REAL NOT NULL, y REAL NOT NULL, z REAL NOT NULL,
+  fx REAL NOT NULL, fy REAL NOT NULL, fz REAL NOT NULL,
+  body INTEGER,
+  u REAL, v REAL, depth REAL,
+  buttons INTEGER NOT NULL,
+  overrun INTEGER NOT NULL,
+  fault INTEGER NOT NULL
+);
+CREATE TABLE events(
+  id INTEGER PRIMARY KEY,
+  t REAL NOT NULL,
+  kind TEXT NOT NULL CHECK(kind IN ('start','mark','unmark','pause','resume','end')),
+  mark INTEGER,
+  x REAL, y REAL, z REAL,
+  note TEXT NOT NULL DEFAULT ''
+);
+)sql";
+
+/// A prepared statement, finalized on destruction.
+class Statement {
+ public:
+  Statement() = default;
+  Statement(sqlite3* db, std::string_view sql);  ///< throws std::runtime_error(errmsg)
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  Statement(Statement&& other) noexcept : stmt_(other.stmt_) { other.stmt_ = nullptr; }
+  Statement& operator=(Statement&& other) noexcept;
+  sqlite3_stmt* get() const { return stmt_; }
+  /// Hands the statement over to the caller, who finalizes it.
+  sqlite3_stmt* release() {
+    auto* stmt = stmt_;
+    stmt_ = nullptr;
+    return stmt;
+  }
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+/// Runs SQL without results; returns SQLITE_OK or the error code, with the message in
+/// `error` (sqlite3_errmsg at the time of the failure).
+int exec(sqlite3* db, const char* sql, std::string& error);
+
+/// The first column of the first row of a one-value query (a PRAGMA), as text; throws
+/// std::runtime_error(errmsg) on failure or when there is no row.
+std::string query_text(sqlite3* db, const char* sql);
+
+/// Doubles as text that reads back to the same bits (shortest round-trip form).
+std::string exact_text(double value);
+
+}  // namespace palpa::session::detail
