@@ -16,15 +16,7 @@ add_executable(make_test_sessions report/make_test_sessions.cpp)
 target_link_libraries(make_test_sessions PRIVATE palpa_core)
 palpa_warnings(make_test_sessions)
 
-# tests/CMakeLists.txt includes this file before it looks for Python: look the same way
-# here (find_program caches, so both end with the same interpreter).
-if(NOT PALPA_PYTHON)
-  find_program(PALPA_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
-endif()
-if(NOT PALPA_PYTHON)
-  find_program(PALPA_PYTHON NAMES python3 REQUIRED)
-endif()
 add_test(NAME cli.score COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_score_cli.py
-         --cli $<TARGET_FILE:palpa-cli> --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
 add_test(NAME cli.batch COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_batch_cli.py
-         --cli $<TARGET_FILE:palpa-cli> --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
