@@ -6,6 +6,8 @@ add_executable(score_tests
   core/score_thresholds_test.cpp
   core/score_marks_test.cpp
   core/score_coverage_test.cpp
+  core/score_session_test.cpp
+  core/score_pattern_test.cpp
 )
 target_link_libraries(score_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(score_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

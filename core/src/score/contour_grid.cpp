@@ -52,9 +52,10 @@ int cells_for(double length, double cell_size) {
 
 ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>& parts, bool whole,
                          double cell_size) {
-  contour_lengths(body, length_u_, length_v_);
-  rows_ = cells_for(length_u_, cell_size);
-  cols_ = cells_for(length_v_, cell_size);
+  double length_u = 0.0, length_v = 0.0;
+  contour_lengths(body, length_u, length_v);
+  rows_ = cells_for(length_u, cell_size);
+  cols_ = cells_for(length_v, cell_size);
 
   const auto node_count = static_cast<std::size_t>((rows_ + 1) * (cols_ + 1));
   node_top_.resize(node_count);
@@ -72,6 +73,7 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
   centers_.resize(n);
   areas_.assign(n, 0.0);
   auto node = [&](int i, int j) -> const Vec3& { return node_top_[static_cast<std::size_t>(i * (cols_ + 1) + j)]; };
+  Vec3 normal_sum = Vec3::Zero();  // area-weighted normal of the whole top contour
   for (int i = 0; i < rows_; ++i) {
     for (int j = 0; j < cols_; ++j) {
       const auto k = static_cast<std::size_t>(i * cols_ + j);
@@ -82,6 +84,7 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
       const Vec3 d1 = node(i + 1, j + 1) - node(i, j);
       const Vec3 d2 = node(i, j + 1) - node(i + 1, j);
       half_diagonal_ = std::max({half_diagonal_, 0.5 * d1.norm(), 0.5 * d2.norm()});
+      normal_sum += 0.5 * d1.cross(d2);
       bool in_region = whole;
       for (const auto& p : parts) {
         if (p.u0 <= uc && uc <= p.u1 && p.v0 <= vc && vc <= p.v1) in_region = true;
@@ -91,6 +94,13 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
         region_area_ += areas_[k];
       }
     }
+  }
+  // The top-down frame: e1, e2 across the mean normal, e1 as close to +x as it can be.
+  if (normal_sum.norm() > 0.0) {
+    const Vec3 axis = normal_sum.normalized();
+    const Vec3 seed = std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    e1_ = (seed - seed.dot(axis) * axis).normalized();
+    e2_ = axis.cross(e1_);
   }
 }
 

@@ -48,9 +48,9 @@ class ContourGrid {
   double region_area() const { return region_area_; }
   /// Largest half-diagonal of a cell (m): a point in a cell lies this close to its centre.
   double half_diagonal() const { return half_diagonal_; }
-  /// Typical top-contour lengths along u and v (m): scale (u, v) into metres for directions.
-  double length_u() const { return length_u_; }
-  double length_v() const { return length_v_; }
+  /// The top-down view: a point projected on the plane across the body's mean top-contour
+  /// normal (m), where the search pattern's directions and strip positions are measured.
+  Eigen::Vector2d top_down(const Vec3& p) const { return {p.dot(e1_), p.dot(e2_)}; }
 
  private:
   int rows_ = 0, cols_ = 0;
@@ -60,7 +60,7 @@ class ContourGrid {
   std::vector<double> areas_;
   double region_area_ = 0.0;
   double half_diagonal_ = 0.0;
-  double length_u_ = 0.0, length_v_ = 0.0;
+  Vec3 e1_ = Vec3::UnitX(), e2_ = Vec3::UnitY();
 };
 
 }  // namespace palpa::score::detail

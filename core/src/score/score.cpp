@@ -294,8 +294,9 @@ Score score_session(const session::Session& session, const std::string& source, 
   out.deep_coverage = region > 0.0 ? clamp01(deep / region) : 0.0;
   bool compact = false;
   if (covered > 0.0) {
-    // Radius of gyration r_g: a disc of area A has 2 pi r_g^2 = A, so an area that fills
-    // at least half the disc its spread implies is one patch, not a scatter.
+    // Radius of gyration r_g: a disc of area A has 2 pi r_g^2 = A. The covered area is one
+    // compact patch when it fills at least half the disc its spread implies (not a
+    // scatter or a ring) and that disc is at most half the exam region (one part of it).
     const Vec3 centroid = moment / covered;
     double spread = 0.0;
     for (std::size_t b = 0; b < grids.size(); ++b) {
@@ -305,7 +306,8 @@ Score score_session(const session::Session& session, const std::string& source, 
         if (level[c] != 0) spread += area[c] * (grids[b].centers()[c] - centroid).squaredNorm();
     }
     const double rg2 = spread / covered;
-    compact = covered >= 0.5 * 2.0 * std::numbers::pi * rg2;
+    const double disc = 2.0 * std::numbers::pi * rg2;
+    compact = covered >= 0.5 * disc && disc <= 0.5 * region;
   }
 
   // Search pattern.

@@ -17,9 +17,9 @@ constexpr int kBins = 36;                       // 5 degree direction bins over 
 struct Segment {
   int body;
   int piece;
-  double angle;  // axial direction in the body's metric (u, v) plane, [0, pi)
+  double angle;  // axial direction in the body's top-down view, [0, pi)
   double length; // m over the top contour
-  double x, y;   // midpoint in the metric plane (u * length_u, v * length_v)
+  double x, y;   // midpoint in the top-down view (m)
 };
 
 double axial_difference(double a, double b) {
@@ -36,8 +36,11 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
     std::size_t end = begin + 1;
     while (end < path.size() && path[end].piece == path[begin].piece) ++end;
     const ContourGrid& g = *grids[static_cast<std::size_t>(path[begin].body)];
-    auto metric = [&](double u, double v) { return std::array<double, 2>{u * g.length_u(), v * g.length_v()}; };
-    std::array<double, 2> last = metric(path[begin].u, path[begin].v);
+    auto view = [&](const Vec3& p) {
+      const Eigen::Vector2d m = g.top_down(p);
+      return std::array<double, 2>{m.x(), m.y()};
+    };
+    std::array<double, 2> last = view(path[begin].top);
     double since = 0.0;  // m of path since the last resampled point
     auto emit = [&](const std::array<double, 2>& m, double length) {
       const double dx = m[0] - last[0];
@@ -57,12 +60,12 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
       while (since + (seg - done) >= kResample) {
         done += kResample - since;
         const double s = seg > 0 ? done / seg : 1.0;
-        emit(metric(a.u + s * (b.u - a.u), a.v + s * (b.v - a.v)), kResample);
+        emit(view(a.top + s * (b.top - a.top)), kResample);
         since = 0.0;
       }
       since += seg - done;
     }
-    if (since > 0.0) emit(metric(path[end - 1].u, path[end - 1].v), since);
+    if (since > 0.0) emit(view(path[end - 1].top), since);
     begin = end;
   }
   return out;
