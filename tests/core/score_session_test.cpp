@@ -251,3 +251,40 @@ TEST(ScoreSession, JsonHasEveryKey) {
 
 }  // namespace
 }  // namespace palpa::score
+
+namespace palpa::score {
+namespace {
+
+TEST(ScoreSession, ExamRegionOnOneOfTwoBodies) {
+  nlohmann::json doc = test::case_document("two-bodies.json");
+  doc["exam_region"] = {{{"body", "left"}}};
+  auto press = [&](int body) {
+    test::SessionBuilder b(doc);
+    for (int k = 0; k < 100; ++k) b.contact_uv(body, 0.5, 0.5, 0.002, 3.0);
+    return score_session(b.finish(), "two.session");
+  };
+  const Score left = press(0), right = press(1);
+  ASSERT_EQ(left.maps.size(), 2u);
+  double right_area = 0.0;
+  for (double a : left.maps[1].area) right_area += a;
+  EXPECT_EQ(right_area, 0.0);  // the right body is not part of the region
+  EXPECT_GT(left.coverage, 0.0);
+  EXPECT_EQ(right.coverage, 0.0);
+  EXPECT_NEAR(right.contact_time_s, 0.1, 1e-9);  // still contact, just outside the region
+  EXPECT_EQ(right.maps[1].level[static_cast<std::size_t>((right.maps[1].rows / 2) * right.maps[1].cols +
+                                                         right.maps[1].cols / 2)],
+            1);
+}
+
+TEST(ScoreSession, SamplesWithoutUsableContactAreSkipped) {
+  test::SessionBuilder b(test::flat_case());
+  for (int k = 0; k < 100; ++k) b.flat_contact(0.0, 0.0, 0.004, 2.0);
+  b.contact_uv(0, std::nan(""), 0.5, 0.004, 2.0);  // unusable parameters
+  b.contact_uv(3, 0.5, 0.5, 0.004, 2.0);           // a body the case does not have
+  const Score s = score_session(b.finish(), "odd.session");
+  EXPECT_NEAR(s.contact_time_s, 0.1, 1e-9);
+  EXPECT_TRUE(has_note(s, "1 samples name a body the case does not have"));
+}
+
+}  // namespace
+}  // namespace palpa::score

@@ -223,7 +223,8 @@ Score score_session(const session::Session& session, const std::string& source, 
     const bool paused = pause_index < tl.pauses.size() && tl.pauses[pause_index].first <= s.t;
     const bool active = s.t >= tl.start && s.t <= tl.end && !paused && !s.fault;
     if (active && s.body >= body_count) ++ignored;
-    const bool contact = active && s.body >= 0 && s.body < body_count;
+    // Non-finite parameters cannot be placed on the grid: such a sample is not contact.
+    const bool contact = active && s.body >= 0 && s.body < body_count && std::isfinite(s.u) && std::isfinite(s.v);
     if (!contact) {
       if (was_contact) {
         flush();
