@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "palpa/io/json_text.hpp"
+#include "palpa/score/thresholds.hpp"
 
 namespace palpa::io {
 namespace {
@@ -411,6 +412,10 @@ CaseFile parse_case(std::string_view text, const std::string& source) {
   if (auto problem = parse_json_text(text, L::kMaxDepth, L::kMaxValues, doc)) throw CaseError(source, {*problem});
   Validator v;
   CaseFile out = validate(std::move(doc), v);
+  // "scoring" and "exam_region" (docs/scoring.md): every tool rejects a bad pass mark.
+  std::vector<Problem> scoring;
+  score::thresholds_from_case(out.document, scoring);
+  for (auto& p : scoring) v.add(std::move(p.where), std::move(p.reason));
   if (!v.ok()) throw CaseError(source, v.take());
   return out;
 }
