@@ -1,1 +1,10 @@
 # Test targets of the exercise module (included by tests/CMakeLists.txt).
+add_executable(exercise_tests
+  core/exercise_placement_test.cpp
+  core/exercise_trainee_test.cpp
+  core/exercise_run_test.cpp
+)
+target_link_libraries(exercise_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
+target_compile_definitions(exercise_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+palpa_warnings(exercise_tests)
+gtest_discover_tests(exercise_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

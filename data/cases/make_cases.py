@@ -117,6 +117,11 @@ def make_default():
         # Carcinoma is 3-6x stiffer than glandular tissue; fingertip estimate
         # ~2000 N/m for a 100 kPa region.
         "stiffness": 1500.0,
+        # Seeded exercises move the centre (docs/case-format.md, "placement"): anywhere
+        # over the breast's interior, from mid-depth (on the skeleton) to a little below.
+        # At depth fraction >= 0.5 a light press (< 20 % of the thickness) never reaches
+        # the tumour and a deep one (>= 50 %) always does (tests/core/exercise_placement_test.cpp).
+        "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.5, 0.6]},
     }
     check_tumor_inside(b, tumor)
     return case(
@@ -126,7 +131,8 @@ def make_default():
             "Breast-like dome on the chest wall (z = 0): base 0.14 m x 0.16 m, "
             "projection 0.05 m. Stiffness rises from 120 N/m at the periphery "
             "(fatty) to 300 N/m at the glandular centre. One 12 mm carcinoma-like "
-            "mass (1500 N/m) at mid-depth in the upper-outer region."
+            "mass (1500 N/m) at mid-depth in the upper-outer region; seeded "
+            "exercises place it at random over the interior (its placement rule)."
         ),
         notes="damping and mass are omitted: the defaults apply (mass 1e-3 kg, damping ratio 0.7 per point).",
         tumors=[tumor],

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "palpa/io/json_text.hpp"
+#include "palpa/score/thresholds.hpp"
 
 namespace palpa::io {
 namespace {
@@ -259,7 +260,39 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   if (v.count() == before) bodies.push_back(std::move(g));
 }
 
-// A tumour: { "body", "center", "radius", "stiffness" } (m, m, N/m); extra fields allowed.
+// A tumour's randomization rule: { "u": [u0, u1], "v": [v0, v1], "depth": [d0, d1] }, each
+// range within [0, 1] and ordered. Its keys are Palpa's own, so unknown ones are typos.
+void read_placement(const json& p, const std::string& base, Validator& v) {
+  if (!p.is_object()) {
+    v.add(base, std::string("placement must be an object {\"u\", \"v\", \"depth\"}, not ") + p.type_name());
+    return;
+  }
+  for (const auto& [key, value] : p.items()) {
+    if (key != "u" && key != "v" && key != "depth") {
+      v.add(base + "/" + key, "unknown placement field " + brief(key) + " (expected u, v, depth)");
+    }
+  }
+  for (const char* key : {"u", "v", "depth"}) {
+    const std::string where = base + "/" + key;
+    if (!p.contains(key)) {
+      v.add(base, std::string("missing \"") + key + "\"");
+      continue;
+    }
+    const json& range = p[key];
+    if (!range.is_array() || range.size() != 2) {
+      v.add(where, std::string(key) + " must be an array of 2 numbers [low, high]");
+      continue;
+    }
+    double lo = 0.0, hi = 0.0;
+    const Range unit{0.0, 1.0, false, "(fraction)"};
+    const bool lo_ok = read_number(range[0], where + "/0", key, unit, v, lo);
+    const bool hi_ok = read_number(range[1], where + "/1", key, unit, v, hi);
+    if (lo_ok && hi_ok && lo > hi) v.add(where, std::string(key) + " range [" + fmt(lo) + ", " + fmt(hi) + "] is reversed");
+  }
+}
+
+// A tumour: { "body", "center", "radius", "stiffness" } (m, m, N/m) and an optional
+// "placement"; extra fields allowed.
 // Whether it lies inside its body needs the fitted body: scene::Scene::build checks that.
 void read_tumour(const json& t, std::size_t index, const std::set<std::string>& ids, bool bodies_ok, Validator& v,
                  std::vector<mat::Tumour>& out) {
@@ -303,6 +336,7 @@ void read_tumour(const json& t, std::size_t index, const std::set<std::string>& 
     read_number(t["stiffness"], base + "/stiffness", "stiffness", {0.0, L::kMaxStiffness, false, "N/m"}, v,
                 tumour.stiffness);
   }
+  if (t.contains("placement")) read_placement(t["placement"], base + "/placement", v);
   if (v.count() == before) out.push_back(std::move(tumour));
 }
 
@@ -378,6 +412,10 @@ CaseFile parse_case(std::string_view text, const std::string& source) {
   if (auto problem = parse_json_text(text, L::kMaxDepth, L::kMaxValues, doc)) throw CaseError(source, {*problem});
   Validator v;
   CaseFile out = validate(std::move(doc), v);
+  // "scoring" and "exam_region" (docs/scoring.md): every tool rejects a bad pass mark.
+  std::vector<Problem> scoring;
+  score::thresholds_from_case(out.document, scoring);
+  for (auto& p : scoring) v.add(std::move(p.where), std::move(p.reason));
   if (!v.ok()) throw CaseError(source, v.take());
   return out;
 }

@@ -32,6 +32,22 @@ Bounds bounds_of(const mat::MatBody& body) {
   return b;
 }
 
+double tumour_clearance(const mat::MatBody& body, const contact::FootPointSearch& search, const mat::Tumour& tumour) {
+  const Vec3 c(tumour.center[0], tumour.center[1], tumour.center[2]);
+  double worst = contact::make_contact(body, search.closest(body.skeleton(), c), c).depth;
+  if (worst < 0.0) return worst;
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const Vec3 x = c + tumour.radius * Vec3(dx, dy, dz).normalized();
+        worst = std::min(worst, contact::make_contact(body, search.closest(body.skeleton(), x), x).depth);
+      }
+    }
+  }
+  return worst;
+}
+
 Scene Scene::build(const io::CaseFile& file, const std::string& source, const mat::FitOptions& options) {
   Scene scene;
   scene.bodies_.reserve(file.bodies.size());
@@ -56,22 +72,12 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       problems.push_back({"/tumors/" + std::to_string(k) + "/body", "unknown body \"" + t.body + "\""});
       continue;
     }
-    // The tumour's sphere must lie inside the body: its centre, and 26 points around its
-    // surface (the faces, edges and corners of a cube, projected onto the sphere), all at
-    // depth >= 0. The centre's depth alone is not enough where the surface slopes.
-    const Vec3 c(t.center[0], t.center[1], t.center[2]);
-    double worst = contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c).depth;
-    const bool centre_inside = worst >= 0.0;
-    for (int dx = -1; dx <= 1 && centre_inside; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dz = -1; dz <= 1; ++dz) {
-          if (dx == 0 && dy == 0 && dz == 0) continue;
-          const Vec3 x = c + t.radius * Vec3(dx, dy, dz).normalized();
-          worst = std::min(worst, contact::make_contact(it->body, it->search.closest(it->body.skeleton(), x), x).depth);
-        }
-      }
-    }
+    // The centre's depth alone is not enough where the surface slopes: see tumour_clearance.
+    const double worst = tumour_clearance(it->body, it->search, t);
     if (worst < 0.0) {
+      const Vec3 c(t.center[0], t.center[1], t.center[2]);
+      const bool centre_inside =
+          contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c).depth >= 0.0;
       char text[220];
       std::snprintf(text, sizeof text,
                     centre_inside ? "tumour (radius %.4g m) is not inside body \"%s\": it reaches %.4g m beyond the surface"

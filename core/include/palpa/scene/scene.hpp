@@ -28,6 +28,12 @@ struct SceneBody {
   std::vector<mat::Tumour> tumours;
 };
 
+/// How far a tumour's sphere stays inside `body` (m): the smallest depth of its centre and
+/// of 26 points around its surface (the faces, edges and corners of a cube, projected onto
+/// the sphere). >= 0 means inside; negative is how far it reaches beyond the surface.
+/// Scene::build rejects tumours below 0; randomized placement redraws them.
+double tumour_clearance(const mat::MatBody& body, const contact::FootPointSearch& search, const mat::Tumour& tumour);
+
 enum class FootPointMethod { Fast, Bisect };
 
 struct ProbeOptions {

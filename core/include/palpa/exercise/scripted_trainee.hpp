@@ -1,0 +1,183 @@
+#pragma once
+// A scripted trainee: a Device that plans and performs a palpation exam on the top contour
+// of a scene's bodies (vertical strips, a press cycle at each spot) and finds tumours only
+// from the force it feels through write_force(), as a person would: it never sees the
+// case's ground truth. Three styles reproduce the exams the scorer must tell apart
+// (research notes, palpation.md): a thorough expert (MammaCare vertical strips, three
+// pressures), a sloppy trainee (wide strips, a skipped strip, medium pressure, false
+// marks) and a light one (full coverage, light pressure only).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "palpa/engine/device.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/session/session.hpp"
+
+namespace palpa::exercise {
+
+using Vec3 = Eigen::Vector3d;
+
+enum class Style : std::uint8_t { Expert, Sloppy, Light };
+
+/// "expert", "sloppy", "light".
+std::string_view to_string(Style style);
+std::optional<Style> style_from_string(std::string_view name);
+
+/// A rectangle of one body's skeleton parameters to examine.
+struct ExamRect {
+  std::size_t body = 0;
+  double u0 = 0.0, u1 = 1.0;
+  double v0 = 0.0, v1 = 1.0;
+};
+
+/// The exam region: the whole top contour of every body of `scene`.
+std::vector<ExamRect> whole_top_contours(const scene::Scene& scene);
+
+/// How a style palpates (SI units; depths as fractions of the local thickness 2R).
+struct StyleParameters {
+  double strip_spacing = 0.013;  ///< m, between strips (arc length across them)
+  double spot_step = 0.007;      ///< m, between spots along a strip
+  int skip_every = 0;            ///< skip strip k when k % skip_every == skip_every - 1 (0: none)
+  /// Pressure levels, increasing. The deep one stops at half the thickness: on the
+  /// default breast's 50 mm centre the tissue alone already pushes back ~23 N at 60 %,
+  /// so a tumour there would hit the 30 N force cap and barely stand out.
+  std::array<double, 3> levels{0.10, 0.30, 0.50};
+  int level_count = 3;
+  double lift = 0.004;           ///< m, above the surface between spots
+  double move_speed = 0.07;      ///< m/s, gliding between spots
+  double press_speed = 0.2;      ///< m/s, pressing in and releasing
+  double hold = 0.04;            ///< s, held at each level before the force is read
+  double neighbourhood = 0.025;  ///< m, spots compared with one another
+  double suspicion_ratio = 1.3;  ///< stiffer than the neighbourhood's median by this: suspicious
+  double group_distance = 0.02;  ///< m, suspicious spots closer than this are one finding
+  double repalpate_factor = 1.15;  ///< press harder by this when re-palpating a finding
+  double confirm_ratio = 1.2;    ///< a re-palpation this much stiffer than the neighbourhood: mark
+  double min_thickness = 0.004;  ///< m: thinner tissue holds no palpable mass; not judged
+  int false_marks_min = 0;       ///< marks this many to ...
+  int false_marks_max = 0;       ///< ... this many spots (drawn from the seed) where it felt nothing
+  double false_mark_clearance = 0.03;  ///< m, such marks keep this far from anything felt and each other
+  double pad_radius = 7.5e-3;    ///< m, finger pad (coverage)
+};
+
+StyleParameters parameters_for(Style style);
+
+/// A planned press spot.
+struct Spot {
+  std::size_t body = 0;
+  double u = 0.0, v = 0.0;
+  Vec3 top = Vec3::Zero();     ///< m, top-contour point
+  Vec3 normal = Vec3::UnitZ();
+  double thickness = 0.0;      ///< m, 2R
+  int strip = 0;
+};
+
+class ScriptedTrainee final : public engine::Device {
+ public:
+  /// Plans the whole exam (and sizes every buffer) here; read and write allocate nothing.
+  /// The scene must outlive the trainee.
+  ScriptedTrainee(const scene::Scene& scene, const std::vector<ExamRect>& region, Style style, std::uint64_t seed);
+  ScriptedTrainee(const scene::Scene& scene, const std::vector<ExamRect>& region, Style style,
+                  const StyleParameters& parameters, std::uint64_t seed);
+
+  const engine::DeviceCapabilities& capabilities() const override { return caps_; }
+  /// The probe position of the plan at t (t must not decrease between calls).
+  engine::DeviceStatus read(double t, engine::DevicePose& pose) noexcept override;
+  /// The force the trainee feels; the last one is what it judges a press by.
+  engine::DeviceStatus write_force(const Vec3& force) noexcept override;
+
+  /// The next event it produced (Mark, with id from 1 and the probe position on the
+  /// surface), oldest first; false when none is waiting. Poll after every tick.
+  bool pop_event(session::Event& event) noexcept;
+
+  /// True once the whole plan (with re-palpations and marks) has been performed.
+  bool finished() const { return finished_; }
+  /// When it finished (s); meaningful once finished().
+  double finish_time() const { return finish_time_; }
+  /// The scan alone (no re-palpation or marking detours), s.
+  double scan_duration() const { return scan_duration_; }
+
+  Style style() const { return style_; }
+  const StyleParameters& parameters() const { return params_; }
+  const std::vector<Spot>& spots() const { return spots_; }
+  /// Effective stiffness |F| / indentation measured at each spot's deepest press (N/m),
+  /// 0 until pressed.
+  const std::vector<double>& measured_stiffness() const { return stiffness_; }
+  /// The deepest planned indentation as a fraction of the local thickness.
+  double max_depth_fraction() const;
+  const Vec3& last_force() const { return force_; }
+
+ private:
+  enum class Action : std::uint8_t { None, Measure, StripEnd, Repalpate, MarkFinding, MarkFalse, End };
+  struct Waypoint {
+    Vec3 position = Vec3::Zero();
+    double duration = 0.0;  ///< s, from the previous waypoint
+    Action action = Action::None;
+    int index = -1;  ///< spot, strip or finding
+    double indentation = 0.0;
+  };
+  struct Finding {
+    std::size_t body = 0;
+    double u = 0.0, v = 0.0;
+    Vec3 top = Vec3::Zero();
+    double reference = 0.0;  ///< N/m: the neighbourhood's median stiffness
+    double felt = 0.0;       ///< N/m: measured at the re-palpation
+    bool marked = false;
+  };
+
+  void plan(const std::vector<ExamRect>& region);
+  void plan_rect(const ExamRect& rect, int& strip);
+  void add_press(std::vector<Waypoint>& out, const Spot& spot, int spot_index, const Vec3& from, bool measure) const;
+  void add_transit(std::vector<Waypoint>& out, std::size_t body, double u0, double v0, double u1, double v1,
+                   const Vec3& from) const;
+  /// A glide from a spot to another, lifted; over the bodies when it changes body.
+  void add_glide(std::vector<Waypoint>& out, std::size_t from_body, double u0, double v0, std::size_t to_body,
+                 double u1, double v1, const Vec3& from) const;
+  void complete(const Waypoint& w, double t) noexcept;
+  void judge_strip(int strip, bool provisional) noexcept;
+  void find_groups(std::size_t at) noexcept;
+  void add_false_marks() noexcept;
+  double neighbourhood_median(std::size_t spot) noexcept;
+  void push_mark(double t, const Vec3& position) noexcept;
+  bool detour_room(std::size_t waypoints) const { return detour_.size() + waypoints <= detour_.capacity(); }
+
+  const scene::Scene* scene_;
+  Style style_;
+  StyleParameters params_;
+  engine::DeviceCapabilities caps_;
+  std::uint64_t rng_state_;
+
+  std::vector<Spot> spots_;
+  std::vector<Waypoint> scan_;
+  std::vector<int> strip_first_;  ///< first spot of each strip, plus one past the end
+  double scan_duration_ = 0.0;
+
+  // Execution: the scan, interrupted by detours (re-palpations, marks) planned on the fly
+  // into preallocated buffers.
+  std::vector<Waypoint> detour_;
+  std::size_t next_scan_ = 0;
+  std::size_t next_detour_ = 0;
+  bool in_detour_ = false;
+  Vec3 from_ = Vec3::Zero();
+  double segment_start_ = 0.0;
+  bool finished_ = false;
+  double finish_time_ = 0.0;
+  Vec3 force_ = Vec3::Zero();
+
+  std::vector<double> stiffness_;
+  std::vector<double> ratio_;       ///< stiffness / neighbourhood median; 0 until judged
+  // Per spot: nothing felt, suspicious, suspicious on a provisional judgement (may join a
+  // finding, cannot start one), taken into a finding.
+  enum : char { kPlain = 0, kSuspicious = 1, kMayJoin = 2, kTaken = 3 };
+  std::vector<char> suspicious_;
+  std::vector<double> scratch_;     ///< median buffer
+  std::vector<int> group_;          ///< grouping buffer
+  std::vector<Finding> findings_;
+  std::vector<session::Event> events_;
+  std::size_t events_read_ = 0;
+  std::int64_t next_mark_ = 1;
+};
+
+}  // namespace palpa::exercise

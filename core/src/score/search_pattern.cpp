@@ -1,0 +1,184 @@
+#include "search_pattern.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace palpa::score::detail {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kResample = 0.002;             // m between resampled path points
+constexpr double kAxisTolerance = 20.0 * kPi / 180.0;  // a segment "along" the axis
+constexpr double kLongRun = 0.020;              // m: a straight run this long is a strip
+constexpr int kBins = 36;                       // 5 degree direction bins over [0, 180)
+
+struct Segment {
+  int body;
+  int piece;
+  double angle;  // axial direction in the body's top-down view, [0, pi)
+  double length; // m over the top contour
+  double x, y;   // midpoint in the top-down view (m)
+};
+
+double axial_difference(double a, double b) {
+  double d = std::fmod(std::abs(a - b), kPi);
+  return std::min(d, kPi - d);
+}
+
+// Resamples every piece of the path every kResample m of top-contour length and returns
+// the segments between consecutive resampled points.
+std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids) {
+  std::vector<Segment> out;
+  std::size_t begin = 0;
+  while (begin < path.size()) {
+    std::size_t end = begin + 1;
+    while (end < path.size() && path[end].piece == path[begin].piece) ++end;
+    const ContourGrid& g = *grids[static_cast<std::size_t>(path[begin].body)];
+    auto view = [&](const Vec3& p) {
+      const Eigen::Vector2d m = g.top_down(p);
+      return std::array<double, 2>{m.x(), m.y()};
+    };
+    std::array<double, 2> last = view(path[begin].top);
+    double since = 0.0;  // m of path since the last resampled point
+    auto emit = [&](const std::array<double, 2>& m, double length) {
+      const double dx = m[0] - last[0];
+      const double dy = m[1] - last[1];
+      if (dx == 0.0 && dy == 0.0) return;
+      double angle = std::atan2(dy, dx);
+      if (angle < 0) angle += kPi;
+      if (angle >= kPi) angle -= kPi;
+      out.push_back({path[begin].body, path[begin].piece, angle, length, 0.5 * (m[0] + last[0]), 0.5 * (m[1] + last[1])});
+      last = m;
+    };
+    for (std::size_t k = begin + 1; k < end; ++k) {
+      const PathPoint& a = path[k - 1];
+      const PathPoint& b = path[k];
+      const double seg = (b.top - a.top).norm();
+      double done = 0.0;  // m of this segment already consumed
+      while (since + (seg - done) >= kResample) {
+        done += kResample - since;
+        const double s = seg > 0 ? done / seg : 1.0;
+        emit(view(a.top + s * (b.top - a.top)), kResample);
+        since = 0.0;
+      }
+      since += seg - done;
+    }
+    if (since > 0.0) emit(view(path[end - 1].top), since);
+    begin = end;
+  }
+  return out;
+}
+
+double median(std::vector<double> x) {
+  if (x.empty()) return 0.0;
+  std::sort(x.begin(), x.end());
+  const std::size_t n = x.size();
+  return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+}  // namespace
+
+SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids,
+                              double pad_radius) {
+  SearchPattern out;
+  double revisited = 0.0;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    if (path[k].piece != path[k - 1].piece) continue;
+    const double seg = (path[k].top - path[k - 1].top).norm();
+    out.path_length_m += seg;
+    if (path[k].revisit) revisited += seg;
+  }
+  if (out.path_length_m <= 0.0) return out;
+  out.revisit_fraction = revisited / out.path_length_m;
+
+  const std::vector<Segment> segments = resample(path, grids);
+  std::array<double, kBins> histogram{};
+  double total = 0.0;
+  for (const auto& s : segments) {
+    histogram[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(s.angle / kPi * kBins)))] += s.length;
+    total += s.length;
+  }
+  if (total <= 0.0) return out;
+  // The dominant axis: the 45 degree window (+-20 degrees and a half bin) that holds the
+  // most path, refined by the axial mean of the segments in it (angles doubled).
+  int best = 0;
+  double best_sum = -1.0;
+  for (int b = 0; b < kBins; ++b) {
+    double sum = 0.0;
+    for (int d = -4; d <= 4; ++d) sum += histogram[static_cast<std::size_t>((b + d + kBins) % kBins)];
+    if (sum > best_sum) {
+      best_sum = sum;
+      best = b;
+    }
+  }
+  const double window_center = (best + 0.5) * kPi / kBins;
+  double c2 = 0.0, s2 = 0.0;
+  for (const auto& s : segments) {
+    if (axial_difference(s.angle, window_center) > kAxisTolerance + 0.5 * kPi / kBins) continue;
+    c2 += s.length * std::cos(2 * s.angle);
+    s2 += s.length * std::sin(2 * s.angle);
+  }
+  const double axis = 0.5 * std::atan2(s2, c2);
+
+  double along = 0.0;
+  for (const auto& s : segments)
+    if (axial_difference(s.angle, axis) <= kAxisTolerance) along += s.length;
+  out.strip_fraction = along / total;
+
+  // Strips: straight runs along the axis at least kLongRun long; their positions across it.
+  std::vector<std::vector<double>> positions(grids.size());
+  const double nx = -std::sin(axis), ny = std::cos(axis);
+  double run_length = 0.0, run_moment = 0.0;
+  auto close_run = [&](int body) {
+    if (run_length >= kLongRun) positions[static_cast<std::size_t>(body)].push_back(run_moment / run_length);
+    run_length = run_moment = 0.0;
+  };
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const Segment& s = segments[k];
+    if (k > 0 && segments[k - 1].piece != s.piece) close_run(segments[k - 1].body);
+    if (axial_difference(s.angle, axis) <= kAxisTolerance) {
+      run_length += s.length;
+      run_moment += s.length * (nx * s.x + ny * s.y);
+    } else {
+      close_run(s.body);
+    }
+  }
+  if (!segments.empty()) close_run(segments.back().body);
+
+  // Neighbouring strips: positions closer than half a pad are one strip passed twice.
+  std::vector<double> gaps;
+  for (auto& p : positions) {
+    std::sort(p.begin(), p.end());
+    std::vector<double> strips;
+    std::size_t count = 0;
+    double sum = 0.0, last = 0.0;
+    for (double x : p) {
+      if (count > 0 && x - last > 0.5 * pad_radius) {
+        strips.push_back(sum / double(count));
+        count = 0;
+        sum = 0.0;
+      }
+      sum += x;
+      ++count;
+      last = x;
+    }
+    if (count > 0) strips.push_back(sum / double(count));
+    for (std::size_t k = 1; k < strips.size(); ++k) gaps.push_back(strips[k] - strips[k - 1]);
+  }
+  out.strip_spacing_mm = 1000.0 * median(gaps);
+  return out;
+}
+
+std::string classify_pattern(const SearchPattern& pattern, bool any_contact, double coverage, bool compact,
+                             const Thresholds& thresholds) {
+  if (!any_contact) return "none";
+  if (coverage >= thresholds.min_coverage) {
+    return pattern.strip_fraction >= 0.6 && pattern.revisit_fraction <= 0.3 ? "efficient" : "thorough";
+  }
+  if (coverage < 0.5 && compact) return "localized";
+  return "sporadic";
+}
+
+}  // namespace palpa::score::detail

@@ -1,0 +1,159 @@
+// Whole scripted exercises on the default breast: what each style marks, what it feels,
+// and the stream of samples and events run_exercise produces.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "exercise_test_support.hpp"
+#include "palpa/exercise/exercise.hpp"
+#include "palpa/exercise/tumour_placement.hpp"
+
+namespace palpa {
+namespace {
+
+using exercise::Style;
+using exercise_test::centre_of;
+using exercise_test::column_at;
+using exercise_test::column_through;
+using exercise_test::default_case;
+using exercise_test::Vec3;
+
+struct Run {
+  std::vector<engine::Sample> samples;
+  std::vector<session::Event> events;
+  exercise::ExerciseSummary summary;
+  std::vector<Vec3> marks;
+  bool felt_equals_sent = true;
+  double finish_time = 0.0;
+};
+
+Run run(const scene::Scene& scene, const std::vector<exercise::ExamRect>& region, Style style, std::uint64_t seed) {
+  exercise::ScriptedTrainee trainee(scene, region, style, seed);
+  Run r;
+  r.summary = exercise::run_exercise(
+      scene, trainee,
+      [&](const engine::Sample& s) {
+        // The trainee is fed the governed force the engine records, nothing else.
+        const Vec3 sent(s.force[0], s.force[1], s.force[2]);
+        if (trainee.last_force() != sent) r.felt_equals_sent = false;
+        r.samples.push_back(s);
+      },
+      [&](const session::Event& e) {
+        r.events.push_back(e);
+        if (e.kind == session::EventKind::Mark) r.marks.emplace_back(e.position[0], e.position[1], e.position[2]);
+      });
+  r.finish_time = trainee.finish_time();
+  return r;
+}
+
+// Where a trainee should mark a tumour: the top-contour point over its centre.
+Vec3 top_projection(const scene::Scene& scene, const mat::Tumour& t) {
+  return column_through(scene.body(0), centre_of(t)).top();
+}
+
+// A region around the authored tumour (u ~ 0.68, v ~ 0.63), so the runs stay short.
+const std::vector<exercise::ExamRect> kNearAuthored{{0, 0.45, 0.95, 0.35, 0.9}};
+
+TEST(Exercise, StreamsStartSamplesMarksAndEndInOrder) {
+  const auto file = default_case();
+  const auto scene = scene::Scene::build(file, "default.json");
+  const auto r = run(scene, kNearAuthored, Style::Expert, 1);
+  EXPECT_TRUE(r.felt_equals_sent);
+  EXPECT_TRUE(r.summary.plan_complete);
+  ASSERT_GE(r.events.size(), 2u);
+  EXPECT_EQ(r.events.front().kind, session::EventKind::Start);
+  EXPECT_EQ(r.events.front().t, 0.0);
+  EXPECT_EQ(r.events.back().kind, session::EventKind::End);
+  EXPECT_EQ(r.events.back().t, r.samples.back().t);
+  EXPECT_EQ(r.summary.duration, r.samples.back().t);
+  EXPECT_EQ(r.summary.ticks, r.samples.size());
+  // Ticks at 1 kHz from t = 0 until 0.5 s after the plan ends.
+  for (std::size_t k = 0; k < r.samples.size(); k += 997) EXPECT_DOUBLE_EQ(r.samples[k].t, static_cast<double>(k) / 1000.0);
+  EXPECT_NEAR(r.summary.duration, r.finish_time + 0.5, 1.5e-3);
+  std::int64_t id = 0;
+  for (std::size_t k = 1; k + 1 < r.events.size(); ++k) {
+    EXPECT_EQ(r.events[k].kind, session::EventKind::Mark);
+    EXPECT_EQ(r.events[k].mark, ++id);
+    EXPECT_GE(r.events[k].t, r.events[k - 1].t);
+  }
+  EXPECT_EQ(r.summary.marks, id);
+  // Deterministic: the same exercise gives the same samples and events.
+  const auto again = run(scene, kNearAuthored, Style::Expert, 1);
+  ASSERT_EQ(again.samples.size(), r.samples.size());
+  EXPECT_EQ(again.samples.back().force, r.samples.back().force);
+  EXPECT_EQ(again.marks, r.marks);
+}
+
+void expect_expert_finds(const scene::Scene& scene, const mat::Tumour& tumour, const Run& r) {
+  ASSERT_EQ(r.marks.size(), 1u);
+  EXPECT_LE((r.marks[0] - top_projection(scene, tumour)).norm(), tumour.radius + 0.010);
+}
+
+void expect_light_misses(const scene::Scene& scene, const Run& r) {
+  EXPECT_TRUE(r.marks.empty());
+  double deepest = 0.0;
+  for (const auto& s : r.samples) {
+    if (s.body < 0) continue;
+    const double thickness = 2.0 * column_at(scene.body(0).body, s.u, s.v).radius;
+    if (thickness > 1e-3) deepest = std::max(deepest, s.depth / thickness);
+  }
+  EXPECT_GT(deepest, 0.1);  // it did press
+  EXPECT_LT(deepest, 0.2);
+}
+
+void expect_sloppy_false_marks(const scene::Scene& scene, const mat::Tumour& tumour, const Run& r) {
+  int far = 0;
+  for (const auto& m : r.marks) far += (m - top_projection(scene, tumour)).norm() > 0.03 ? 1 : 0;
+  EXPECT_GE(far, 2);
+}
+
+TEST(Exercise, AuthoredTumourExpertMarksItLightDoesNotSloppyMarksElsewhere) {
+  const auto file = default_case();
+  const auto scene = scene::Scene::build(file, "default.json");
+  const auto& tumour = file.tumours[0];
+  expect_expert_finds(scene, tumour, run(scene, kNearAuthored, Style::Expert, 1));
+  expect_light_misses(scene, run(scene, kNearAuthored, Style::Light, 1));
+  expect_sloppy_false_marks(scene, tumour, run(scene, exercise::whole_top_contours(scene), Style::Sloppy, 1));
+}
+
+// The full exams on placed tumours (about 150 s of simulated time each for the expert):
+// seconds in a release build, much longer under the sanitizers, so opt-in.
+TEST(Exercise, PlacedTumoursWholeExamsLong) {
+  if (std::getenv("PALPA_LONG_TESTS") == nullptr) GTEST_SKIP() << "set PALPA_LONG_TESTS=1 to run the full exams";
+  const auto file = default_case();
+  for (std::uint64_t seed : {11u, 12u, 13u}) {
+    SCOPED_TRACE(seed);
+    const auto placed = exercise::place_tumours(file, seed, "default.json");
+    const auto scene = scene::Scene::build(placed, "placed");
+    const auto region = exercise::whole_top_contours(scene);
+    const auto& tumour = placed.tumours[0];
+    expect_expert_finds(scene, tumour, run(scene, region, Style::Expert, seed));
+    expect_light_misses(scene, run(scene, region, Style::Light, seed));
+    expect_sloppy_false_marks(scene, tumour, run(scene, region, Style::Sloppy, seed));
+  }
+}
+
+TEST(Exercise, SessionInfoCarriesThePlacedCaseAndStyle) {
+  const auto placed = exercise::place_tumours(default_case(), 5, "default.json");
+  const auto info = exercise::exercise_session_info(placed, "data/cases/default.json", 5u, Style::Light, "t01",
+                                                    "scripted trainee (light)", exercise::iso8601_utc(0));
+  EXPECT_EQ(info.started_at, "1970-01-01T00:00:00Z");
+  EXPECT_EQ(info.trainee, "t01");
+  EXPECT_EQ(info.device, "scripted trainee (light)");
+  EXPECT_EQ(info.seed, std::optional<std::uint64_t>(5));
+  EXPECT_EQ(info.extra["exercise_style"], "light");
+  EXPECT_EQ(info.id.size(), 16u);
+  EXPECT_FALSE(info.software_version.empty());
+  // The stored case is a valid case whose tumour is where it was placed.
+  const auto back = io::parse_case(info.case_document.dump(), "stored");
+  EXPECT_EQ(back.tumours[0].center, placed.tumours[0].center);
+}
+
+TEST(Exercise, Iso8601FromUnixSeconds) {
+  EXPECT_EQ(exercise::iso8601_utc(951782400), "2000-02-29T00:00:00Z");  // a leap day
+  EXPECT_EQ(exercise::iso8601_utc(1795365600), "2026-11-22T16:40:00Z");
+  EXPECT_EQ(exercise::iso8601_utc(-1), "1969-12-31T23:59:59Z");
+}
+
+}  // namespace
+}  // namespace palpa
