@@ -5,6 +5,7 @@ add_executable(report_tests
   report/images_test.cpp
   report/html_test.cpp
   report/learning_curve_test.cpp
+  report/report_json_test.cpp
 )
 target_link_libraries(report_tests PRIVATE palpa_report opencv_imgproc opencv_imgcodecs GTest::gtest GTest::gtest_main)
 target_compile_definitions(report_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
