@@ -180,10 +180,12 @@ void draw_truth_legend(cv::Mat& image, const TopView& view) {
   put_text(image, number_text(std::round(length * 1e4) / 10.0) + " mm", {x1 + 8, y + 5});
 }
 
-cv::Mat blank(const std::string& title) {
+cv::Mat blank(const std::string& title, const score::Score& score) {
   cv::Mat image(kHeight, kWidth, CV_8UC3, kWhite);
   put_text(image, title, {kMapArea.x, 32}, 0.7, 2);
   put_text(image, "top-down view (x right, y up)", {kMapArea.x + 470, 32}, 0.45);
+  if (std::none_of(score.maps.begin(), score.maps.end(), map_is_valid))
+    put_text(image, "(no exam map in this score)", {kMapArea.x + 180, kMapArea.y + kMapArea.height / 2});
   return image;
 }
 
@@ -245,7 +247,7 @@ TopView map_view(const score::Score& score) {
 }
 
 cv::Mat coverage_heatmap(const score::Score& score) {
-  cv::Mat image = blank("Coverage: contact time per cell");
+  cv::Mat image = blank("Coverage: contact time per cell", score);
   const TopView view = map_view(score);
   float max_dwell = 0.0F;
   for (const auto& map : score.maps)
@@ -276,7 +278,7 @@ cv::Mat coverage_heatmap(const score::Score& score) {
 }
 
 cv::Mat pressure_map(const score::Score& score) {
-  cv::Mat image = blank("Pressure: deepest level reached");
+  cv::Mat image = blank("Pressure: deepest level reached", score);
   const TopView view = map_view(score);
   draw_cells(image, view, score, [](const score::BodyMap& map, std::size_t k) {
     return level_colour(k < map.level.size() ? map.level[k] : 0);
