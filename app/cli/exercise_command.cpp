@@ -116,7 +116,8 @@ Command add_exercise_command(CLI::App& parent) {
                   "(default expert)");
   app->add_option("--seed", o->seed,
                   "seed for tumour placement and the trainee's random choices; default: a fresh one, printed and "
-                  "recorded in the session");
+                  "recorded in the session")
+      ->check(CLI::NonNegativeNumber);
   app->add_option("--out", o->out_path, "session file to create (never overwritten; suggested extension .palpa)")
       ->required();
   app->add_flag("--json", o->json, "print the score as JSON instead of the score card");
