@@ -8,3 +8,7 @@ target_link_libraries(exercise_tests PRIVATE palpa_core GTest::gtest GTest::gtes
 target_compile_definitions(exercise_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(exercise_tests)
 gtest_discover_tests(exercise_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
+
+# palpa-cli exercise end to end: styles, the session file, determinism, refusals.
+add_test(NAME cli.exercise COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_exercise_cli.py
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR})

@@ -20,6 +20,7 @@ Command add_fit_command(CLI::App& parent);
 Command add_probe_command(CLI::App& parent);
 Command add_bench_command(CLI::App& parent);
 Command add_simulate_command(CLI::App& parent);
+Command add_exercise_command(CLI::App& parent);
 Command add_score_command(CLI::App& parent);
 Command add_batch_command(CLI::App& parent);
 

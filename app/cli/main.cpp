@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   app.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.\nRun 'palpa-cli COMMAND --help' for a command's options.");
 
   std::vector<Command> commands{add_validate_command(app), add_fit_command(app), add_probe_command(app),
-                                add_simulate_command(app), add_score_command(app),
+                                add_simulate_command(app), add_exercise_command(app), add_score_command(app),
                                 add_batch_command(app), add_bench_command(app)};
   try {
     app.parse(argc, argv);
@@ -47,6 +47,6 @@ int main(int argc, char** argv) {
       }
     }
   }
-  print_error("a command is required: validate, fit, probe, simulate, score, batch or bench (see palpa-cli --help)");
+  print_error("a command is required: validate, fit, probe, simulate, exercise, score, batch or bench (see palpa-cli --help)");
   return kBadInput;
 }

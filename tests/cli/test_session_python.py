@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """A finished session is readable with nothing but Python's standard sqlite3 module
-(docs/session-format.md): pragmas, meta, samples to the bit, events and marks."""
+(docs/session-format.md): pragmas, meta, samples to the bit, events and marks; and the
+documentation's own Python example runs as printed."""
 import argparse
 import json
 import os
+import re
 import sqlite3
 import subprocess
 import sys
@@ -72,6 +74,25 @@ class SessionFromPython(unittest.TestCase):
             if kind == "mark":
                 marks[mark] = (x, y, z)
         self.assertEqual(marks, {2: (0.04, 0.05, 0.06)})
+
+
+    def test_the_documented_example_runs(self):
+        with open(os.path.join(ARGS.repo, "docs", "session-format.md"), encoding="utf-8") as f:
+            doc = f.read()
+        found = re.search(r"<!-- python-example-begin -->\s*```python\n(.*?)```\s*<!-- python-example-end -->",
+                          doc, re.S)
+        self.assertIsNotNone(found, "the example's markers are missing from docs/session-format.md")
+        # The snippet opens s.palpa in the current folder: run it where the session is.
+        run = subprocess.run([sys.executable, "-c", found.group(1)], cwd=self.tmp.name,
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertEqual(run.stdout.splitlines(), [
+            "python-reader %s 1 bodies" % self.db.execute(
+                "select value from meta where key = 'started_at'").fetchone()[0],
+            "50 ticks in contact, peak normal force 24.75 N",
+            "standing marks: {2: (0.04, 0.05, 0.06)}",
+            "complete: True",
+        ])
 
 
 if __name__ == "__main__":

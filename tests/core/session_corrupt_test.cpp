@@ -63,7 +63,7 @@ TEST_F(SessionCorrupt, FilesThatAreNotSQLiteAreNamedSo) {
   expect_refused(file_with("noise.palpa", noise), "not an SQLite database");
   // The SQLite magic followed by noise gets past the first look; SQLite itself must refuse it.
   const std::string magic("SQLite format 3\0", 16);
-  expect_refused(file_with("magic-noise.palpa", magic + noise), "");
+  expect_refused(file_with("magic-noise.palpa", magic + noise), "file: not a Palpa session (not an SQLite database)");
 }
 
 TEST_F(SessionCorrupt, TruncatedSessionsAreRefused) {
@@ -170,6 +170,36 @@ TEST_F(SessionCorrupt, HandEditedEventsAreChecked) {
   const auto where = good("where.palpa");
   sql(where, "UPDATE events SET y = NULL WHERE kind = 'mark';");
   expect_refused(where, "column y: missing (NULL)");
+}
+
+TEST_F(SessionCorrupt, ViewsAndTriggersAreRefused) {
+  // A view in place of a table: it could compute anything; a session has real tables.
+  const auto view = good("view.palpa");
+  sql(view, "ALTER TABLE events RENAME TO old_events; CREATE VIEW events AS SELECT * FROM old_events;");
+  expect_refused(view, "events: table is missing");
+  // Beside the tables, a view or a trigger is not Palpa's: a hand-made or hostile file.
+  const auto extra_view = good("extra-view.palpa");
+  sql(extra_view, "CREATE VIEW marks AS SELECT * FROM events WHERE kind = 'mark';");
+  expect_refused(extra_view, "file: not a Palpa session (holds a view 'marks'; sessions have none)");
+  const auto trigger = good("trigger.palpa");
+  sql(trigger, "CREATE TRIGGER wipe AFTER INSERT ON events BEGIN DELETE FROM samples; END;");
+  expect_refused(trigger, "file: not a Palpa session (holds a trigger 'wipe'; sessions have none)");
+  EXPECT_THROW(read_session(trigger, ReadOptions{false}), SessionError);
+}
+
+TEST_F(SessionCorrupt, ALiveSessionCopiedWithoutItsWalIsNamedSo) {
+  const auto live = dir_ / "live.palpa";
+  SessionWriter writer(live, test::flat_case_info());
+  for (std::uint64_t k = 0; k < 100; ++k) writer.append(test::sample_at(k));
+  writer.commit();
+  ASSERT_TRUE(std::filesystem::exists(dir_ / "live.palpa-wal"));
+  std::filesystem::create_directory(dir_ / "copy");
+  const auto copy = dir_ / "copy" / "live.palpa";
+  std::filesystem::copy_file(live, copy);  // the .palpa alone, as a careless copy would
+  const std::string reason = "file: recorded in WAL mode: its -wal/-shm files are missing or the folder is not writable";
+  expect_refused(copy, reason);
+  expect_refused(copy, reason);  // again, now that SQLite has left an empty -wal beside it
+  EXPECT_EQ(read_session(live).samples.size(), 100u);  // the original, with its -wal, reads
 }
 
 }  // namespace

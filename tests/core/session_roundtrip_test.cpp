@@ -288,5 +288,158 @@ TEST(SessionWriter, RefusesSamplesAndEventsTheReaderWouldReject) {
   EXPECT_EQ(read_session(dir / "s.palpa").samples.size(), 1u);
 }
 
+TEST(SessionWriter, RefusesTimeGoingBackwardsAndBodiesTheCaseDoesNotHave) {
+  ScratchDir dir;
+  SessionWriter writer(dir / "s.palpa", flat_case_info());
+  auto s = sample_at(500);  // t = 0.5 s
+  writer.append(s);
+  s.t = 0.4;
+  try {
+    writer.append(s);
+    FAIL();
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.where(), "samples tick 1: column t") << e.what();
+    EXPECT_EQ(e.reason(), "time goes backwards (0.4 s after 0.5 s)") << e.what();
+  }
+  s = sample_at(501);
+  s.body = 1;  // flat-5x5 has one body
+  try {
+    writer.append(s);
+    FAIL();
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.where(), "samples tick 1: column body") << e.what();
+  }
+  s.t = 0.5;  // equal times are allowed (the reader refuses only t decreasing)
+  s.body = 0;
+  writer.append(s);
+  writer.finish();
+  EXPECT_EQ(read_session(dir / "s.palpa").samples.size(), 2u);
+}
+
+TEST(SessionWriter, AppendRepairingStoresBadTicksAsFaultsInsteadOfRefusingThem) {
+  ScratchDir dir;
+  const auto path = dir / "s.palpa";
+  SessionWriter writer(path, flat_case_info());
+  EXPECT_TRUE(writer.append_repairing(sample_at(1)));  // tick 1: in contact, t = 0.001
+  auto s = sample_at(2);
+  s.fault = false;
+  s.position[1] = std::nan("");
+  s.force[2] = -std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(writer.append_repairing(s));
+  s = sample_at(4);
+  s.t = 0.0005;  // before the previous tick
+  EXPECT_FALSE(writer.append_repairing(s));
+  s = sample_at(5);
+  s.body = 7;  // no such body
+  EXPECT_FALSE(writer.append_repairing(s));
+  s = sample_at(7);
+  s.depth = std::nan("");
+  EXPECT_FALSE(writer.append_repairing(s));
+  s = sample_at(8);
+  s.t = std::nan("");
+  EXPECT_FALSE(writer.append_repairing(s));
+  EXPECT_TRUE(writer.append_repairing(sample_at(10)));
+  EXPECT_EQ(writer.samples_written(), 7u);
+  EXPECT_EQ(writer.samples_repaired(), 5u);
+  writer.set_loop_stats(engine::LoopStats{}, 3);
+  writer.finish();
+
+  const auto back = read_session(path);
+  ASSERT_EQ(back.samples.size(), 7u);
+  EXPECT_TRUE(test::same_sample(back.samples[0], sample_at(1)));
+  const auto& nan_sample = back.samples[1];
+  EXPECT_TRUE(nan_sample.fault);
+  EXPECT_EQ(nan_sample.position[1], 0.0);
+  EXPECT_EQ(nan_sample.force[2], 0.0);
+  EXPECT_EQ(nan_sample.position[0], sample_at(2).position[0]);  // the finite values are kept
+  EXPECT_EQ(back.samples[2].t, 0.002);                           // the previous tick's t
+  EXPECT_TRUE(back.samples[2].fault);
+  EXPECT_EQ(back.samples[3].body, -1);  // unknown body: out of contact
+  EXPECT_TRUE(back.samples[3].fault);
+  EXPECT_EQ(back.samples[4].body, -1);
+  EXPECT_EQ(back.samples[5].t, 0.007);
+  EXPECT_TRUE(test::same_sample(back.samples[6], sample_at(10)));
+  EXPECT_EQ(back.loop_stats["dropped"].get<std::uint64_t>(), 3u);
+  EXPECT_EQ(back.loop_stats["repaired"].get<std::uint64_t>(), 5u);
+}
+
+TEST(SessionWriter, TextThatIsNotUtf8IsRefusedWithTheFieldNamedAndNoFileLeft) {
+  ScratchDir dir;
+  const auto path = dir / "bad.palpa";
+  const auto refused = [&](const SessionInfo& info, const std::string& where) {
+    try {
+      SessionWriter writer(path, info);
+      ADD_FAILURE() << "accepted; expected a problem at " << where;
+    } catch (const SessionError& e) {
+      EXPECT_EQ(e.where(), where) << e.what();
+      EXPECT_NE(e.reason().find("UTF-8"), std::string::npos) << e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not a SessionError: " << e.what();
+    }
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+      EXPECT_FALSE(std::filesystem::exists(path.string() + suffix)) << suffix;
+    }
+  };
+  auto info = flat_case_info();
+  info.extra = {{"note", "caf\xE9"}};  // Latin-1, not UTF-8
+  refused(info, "extra");
+  info = flat_case_info();
+  info.trainee = "M\xFCller";
+  refused(info, "trainee");
+  info.trainee = "\xC0\x80";  // an overlong NUL
+  refused(info, "trainee");
+  info.trainee = "\xED\xA0\x80";  // a UTF-16 surrogate
+  refused(info, "trainee");
+  info.trainee = "abc\xE2\x82";  // cut short
+  refused(info, "trainee");
+  info = flat_case_info();
+  info.case_source = "cases/\xFF.json";
+  refused(info, "case_source");
+  info = flat_case_info();
+  info.case_document["comment"] = "\x80";
+  refused(info, "case");
+
+  info = flat_case_info();
+  info.trainee = "Zo\xC3\xAB \xE5\xAD\xA6\xE7\x94\x9F \xF0\x9F\x99\x82";  // "Zoë 学生 🙂": valid
+  {
+    SessionWriter writer(path, info);
+    Event e;
+    e.kind = EventKind::Pause;
+    e.note = "stopped at \xFF";
+    try {
+      writer.event(e);
+      ADD_FAILURE() << "a non-UTF-8 note was accepted";
+    } catch (const SessionError& error) {
+      EXPECT_EQ(error.where(), "events pause at t=0: note") << error.what();
+    }
+    writer.finish();
+  }
+  EXPECT_EQ(read_session(path).info.trainee, info.trainee);
+}
+
+TEST(SessionWriter, FinishWithAReaderOpenCommitsAndLeavesWalModeAsAWarning) {
+  ScratchDir dir;
+  const auto path = dir / "watched.palpa";
+  SessionWriter writer(dir / "plain.palpa", flat_case_info());
+  writer.finish();
+  EXPECT_EQ(writer.warning(), "");  // alone: one file, no warning
+
+  SessionWriter live(path, flat_case_info());
+  for (std::uint64_t k = 0; k < 100; ++k) live.append(sample_at(k));
+  live.event(make_event(0.1, EventKind::End));
+  live.commit();
+  // Another program (a viewer) has the live file open, as Python or sqlite3 would.
+  sqlite3* viewer = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path.string().c_str(), &viewer, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(viewer, "SELECT count(*) FROM samples", nullptr, nullptr, nullptr), SQLITE_OK);
+  EXPECT_NO_THROW(live.finish());
+  EXPECT_NE(live.warning().find("left in write-ahead-log mode"), std::string::npos) << live.warning();
+  const auto s = read_session(path);  // everything is there, with the viewer still open
+  EXPECT_TRUE(s.complete);
+  EXPECT_EQ(s.samples.size(), 100u);
+  sqlite3_close(viewer);
+  EXPECT_EQ(read_session(path).samples.size(), 100u);
+}
+
 }  // namespace
 }  // namespace palpa::session

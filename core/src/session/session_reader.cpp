@@ -1,5 +1,6 @@
 #include "palpa/session/session_reader.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -39,7 +40,9 @@ class Reader {
     throw SessionError(file_, where, reason);
   }
   [[noreturn]] void fail_sqlite(const std::string& where, int rc) const;
-  void check_file(const std::filesystem::path& path) const;
+  void check_file(const std::filesystem::path& path);
+  [[noreturn]] void fail_wal_missing() const;
+  bool wal_files_missing() const;
   void open();
   void check_identity();
   bool has_table(const char* name);
@@ -63,12 +66,24 @@ class Reader {
   }
 
   std::string file_;
+  bool wal_header_ = false;  // the file header says WAL mode: it needs its -wal and -shm
+  bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
   sqlite3* db_ = nullptr;
   std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
 };
 
+void Reader::fail_wal_missing() const {
+  fail("file", "recorded in WAL mode: its -wal/-shm files are missing or the folder is not writable");
+}
+
+// A session left in WAL mode (cut short, or finished while another program had it open)
+// keeps part of its data in FILE-wal; without it (or without FILE-shm where none can be
+// made) SQLite sees an empty or unopenable database.
+bool Reader::wal_files_missing() const { return wal_header_ && wal_absent_; }
+
 void Reader::fail_sqlite(const std::string& where, int rc) const {
   const std::string message = db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+  if (wal_header_ && ((rc & 0xFF) == SQLITE_CANTOPEN || (rc & 0xFF) == SQLITE_READONLY)) fail_wal_missing();
   switch (rc & 0xFF) {
     case SQLITE_NOTADB: fail("file", "not a Palpa session (not an SQLite database)");
     case SQLITE_CORRUPT: fail(where, "damaged file (" + message + "): it was cut short or overwritten");
@@ -78,7 +93,7 @@ void Reader::fail_sqlite(const std::string& where, int rc) const {
   }
 }
 
-void Reader::check_file(const std::filesystem::path& path) const {
+void Reader::check_file(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (status.type() == std::filesystem::file_type::not_found) fail("file", "no such file");
@@ -91,12 +106,17 @@ void Reader::check_file(const std::filesystem::path& path) const {
   // SQLite takes any file to be a database until it reads it; say plainly what is not.
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("file", "cannot open for reading");
-  std::array<char, 16> magic{};
-  in.read(magic.data(), static_cast<std::streamsize>(magic.size()));
-  if (in.gcount() != static_cast<std::streamsize>(magic.size()) ||
-      std::string_view(magic.data(), magic.size()) != std::string_view("SQLite format 3\0", 16)) {
+  std::array<char, 20> header{};
+  in.read(header.data(), static_cast<std::streamsize>(header.size()));
+  if (in.gcount() < 16 || std::string_view(header.data(), 16) != std::string_view("SQLite format 3\0", 16)) {
     fail("file", "not a Palpa session (not an SQLite database)");
   }
+  // Bytes 18 and 19: the file format's write and read versions, 2 in WAL mode.
+  wal_header_ = in.gcount() == 20 && header[18] == 2 && header[19] == 2;
+  // Looked at before opening: SQLite creates an empty -wal (and -shm) where it can.
+  std::error_code wal_ec;
+  const auto wal_size = std::filesystem::file_size(file_ + "-wal", wal_ec);
+  wal_absent_ = wal_ec || wal_size == 0;
 }
 
 void Reader::open() {
@@ -126,12 +146,26 @@ void Reader::check_identity() {
   if (!step(query, "file")) fail("file", "not a Palpa session (no application_id)");
   const auto id = static_cast<std::uint32_t>(sqlite3_column_int(query.get(), 0));
   if (id != static_cast<std::uint32_t>(detail::kApplicationId)) {
-    if (!has_table("meta")) fail("file", "not a Palpa session (an SQLite database without Palpa's tables)");
+    if (!has_table("meta")) {
+      if (wal_files_missing()) fail_wal_missing();
+      fail("file", "not a Palpa session (an SQLite database without Palpa's tables)");
+    }
     fail("application_id", "not a Palpa session (application_id is " + hex32(id) + ", a session has " +
                                hex32(static_cast<std::uint32_t>(detail::kApplicationId)) + " 'PALP')");
   }
   for (const char* table : {"meta", "samples", "events"}) {
     if (!has_table(table)) fail(table, "table is missing");
+  }
+  // Palpa writes no views or triggers; one in a session is a hand-made or hostile file.
+  auto extra = prepare("file", "SELECT type, name FROM sqlite_schema WHERE type IN ('view', 'trigger') LIMIT 1");
+  if (step(extra, "file")) {
+    std::string reason = "not a Palpa session (holds a ";
+    reason += reinterpret_cast<const char*>(sqlite3_column_text(extra.get(), 0));
+    reason += " '";
+    const auto* name = sqlite3_column_text(extra.get(), 1);
+    reason += name != nullptr ? reinterpret_cast<const char*>(name) : "";
+    reason += "'; sessions have none)";
+    fail("file", reason);
   }
 }
 
@@ -297,7 +331,10 @@ void Reader::read_samples(Session& session) {
   static constexpr const char* kColumns =
       "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
   if (auto count = prepare("samples", "SELECT count(*) FROM samples"); step(count, "samples")) {
-    session.samples.reserve(static_cast<std::size_t>(sqlite3_column_int64(count.get(), 0)));
+    // Capped (about 4 million ticks, 70 minutes at 1 kHz): a hostile count must not make
+    // the reservation itself fail; a longer session grows the vector as it reads.
+    const auto rows = std::max<sqlite3_int64>(0, sqlite3_column_int64(count.get(), 0));
+    session.samples.reserve(static_cast<std::size_t>(std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22)));
   }
   auto query = prepare("samples", (std::string(kColumns) + " ORDER BY tick").c_str());
   Row row{file_, query.get(), "samples", "tick"};
@@ -342,6 +379,10 @@ void Reader::read_samples(Session& session) {
 Session Reader::read(const std::filesystem::path& path, const ReadOptions& options) {
   check_file(path);
   open();
+  // One read transaction for everything: a live session being written meanwhile is read
+  // as one consistent snapshot (meta, events and samples of the same commit).
+  std::string error;
+  if (const int rc = detail::exec(db_, "BEGIN", error); rc != SQLITE_OK) fail_sqlite("file", rc);
   check_identity();
   Session session;
   read_meta(session);
@@ -353,6 +394,7 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
     prepare("samples",
             "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples LIMIT 0");
   }
+  if (const int rc = detail::exec(db_, "COMMIT", error); rc != SQLITE_OK) fail_sqlite("file", rc);
   return session;
 }
 

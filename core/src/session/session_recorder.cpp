@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <string>
 
 namespace palpa::session {
 
 SessionRecorder::SessionRecorder(engine::RealtimeLoop& loop, SessionWriter& writer, double commit_interval)
-    : loop_(&loop), writer_(&writer), commit_interval_(commit_interval) {}
+    : loop_(&loop), writer_(&writer), commit_interval_(commit_interval) {
+  // The format promises at most a second lost to a crash (docs/session-format.md).
+  if (!(commit_interval > 0.0 && commit_interval <= 1.0)) {
+    std::string reason = "must be in (0, 1] s, not ";
+    reason += std::to_string(commit_interval);
+    throw SessionError(writer.path().string(), "commit_interval", reason);
+  }
+}
 
 SessionRecorder::~SessionRecorder() {
   try {
@@ -22,7 +30,14 @@ void SessionRecorder::start() {
 }
 
 void SessionRecorder::event(const Event& event) {
+  // Checked here, on the caller's thread: a bad event is the caller's error, and must not
+  // stop the writer thread (and with it the recording).
+  check_event(writer_->path().string(), event);
   std::lock_guard lock(mutex_);
+  if (stopped_) {
+    throw SessionError(writer_->path().string(), "events",
+                       "the recorder is stopped: nothing more is recorded (the End event is finish()'s)");
+  }
   if (event.kind == EventKind::End) end_queued_ = true;
   pending_events_.push_back(event);
 }
@@ -43,7 +58,8 @@ void SessionRecorder::drain() {
   std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
   for (const auto& e : events) writer_->event(e);
   engine::Sample sample;
-  while (loop_->pop_sample(sample)) writer_->append(sample);
+  // A bad tick (non-finite value) is stored as a fault, not refused: it must not end the recording.
+  while (loop_->pop_sample(sample)) writer_->append_repairing(sample);
 }
 
 void SessionRecorder::run() {
@@ -70,13 +86,18 @@ void SessionRecorder::run() {
 }
 
 void SessionRecorder::stop() {
-  if (stop_.exchange(true)) return;  // once
+  {
+    std::lock_guard lock(mutex_);
+    if (stopped_) return;  // once
+    stopped_ = true;       // from here event() refuses: everything queued is drained below
+  }
+  stop_.store(true, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
   if (!error().empty()) return;  // the file keeps what was committed before the error
   // The thread has ended: this thread is now the ring's (and the statistics') only consumer.
   try {
     drain();
-    writer_->set_loop_stats(loop_->stats());
+    writer_->set_loop_stats(loop_->stats(), loop_->dropped_samples());
     writer_->commit();
   } catch (const std::exception& e) {
     std::lock_guard lock(mutex_);
@@ -85,18 +106,22 @@ void SessionRecorder::stop() {
 }
 
 void SessionRecorder::finish(double t_end, const std::string& note) {
+  Event end;
+  end.t = t_end;
+  end.kind = EventKind::End;
+  end.note = note;
+  check_event(writer_->path().string(), end);
   {
     std::lock_guard lock(mutex_);
     if (!end_queued_) {
-      Event end;
-      end.t = t_end;
-      end.kind = EventKind::End;
-      end.note = note;
+      // Queued directly (event() refuses once stopped): finish() after stop() still ends the session.
       pending_events_.push_back(end);
       end_queued_ = true;
     }
   }
   stop();
+  // A session whose recording failed stays incomplete: no End after a gap.
+  if (error().empty()) drain();  // what was queued after stop(): the End at least
   writer_->finish();
 }
 

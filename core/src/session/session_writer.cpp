@@ -9,9 +9,13 @@
 #include <cmath>
 #include <cstring>
 #include <ctime>
+#include <memory>
 #include <random>
 #include <string_view>
+#include <thread>
+#include <utility>
 
+#include "checks.hpp"
 #include "palpa/io/case_file.hpp"
 #include "sqlite_util.hpp"
 
@@ -56,20 +60,35 @@ nlohmann::json loop_stats_json(const engine::LoopStats& stats) {
 }
 
 // Everything a reader will insist on, checked before the file exists: a writer must not
-// produce a session that cannot be read back.
-void validate(const std::string& file, const SessionInfo& info) {
+// produce a session that cannot be read back (nor one Python's sqlite3 cannot decode).
+struct CheckedInfo {
+  std::string case_text;
+  std::string extra_text;
+  std::size_t bodies = 0;
+};
+
+CheckedInfo validate(const std::string& file, const SessionInfo& info) {
   if (info.trainee.empty()) throw SessionError(file, "trainee", "must not be empty");
   if (!std::isfinite(info.rate_hz) || info.rate_hz <= 0.0) {
     throw SessionError(file, "rate_hz", "must be a finite number > 0, not " + detail::exact_text(info.rate_hz));
   }
+  const std::pair<const char*, const std::string*> texts[] = {
+      {"id", &info.id},           {"trainee", &info.trainee},   {"device", &info.device},
+      {"software_version", &info.software_version}, {"started_at", &info.started_at},
+      {"case_source", &info.case_source}};
+  for (const auto& [name, text] : texts) detail::check_utf8(file, name, *text);
   if (!info.case_document.is_object()) throw SessionError(file, "case", "the case document must be a JSON object");
+  CheckedInfo checked;
+  checked.case_text = detail::dump_json(file, "case", info.case_document);
+  checked.extra_text = detail::dump_json(file, "extra", info.extra);
   try {
-    io::parse_case(info.case_document.dump(), file + ": case");
+    checked.bodies = io::parse_case(checked.case_text, file + ": case").bodies.size();
   } catch (const io::CaseError& e) {
     const auto& p = e.problems();
     throw SessionError(file, "case " + (p.empty() ? std::string("/") : p.front().where),
                        p.empty() ? std::string(e.what()) : p.front().reason);
   }
+  return checked;
 }
 
 // Creates the file itself (O_EXCL), so that an existing session is refused without a race
@@ -109,71 +128,104 @@ void create_exclusive(const std::filesystem::path& path) {
 
 }  // namespace
 
-SessionWriter::SessionWriter(const std::filesystem::path& path, const SessionInfo& info) : path_(path) {
-  const std::string file = path.string();
-  validate(file, info);
-  create_exclusive(path);
-  const auto fail = [&](const std::string& where, const std::string& reason) {
-    close();
-    // The file is ours and holds nothing yet: leave no half-made session behind.
-    std::error_code ec;
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
-      auto p = path;
-      p += suffix;
-      std::filesystem::remove(p, ec);
-    }
-    throw SessionError(file, where, reason);
-  };
-  if (sqlite3_open_v2(file.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) != SQLITE_OK) {
-    fail("file", db_ != nullptr ? sqlite3_errmsg(db_) : "cannot open");
+namespace {
+
+struct CloseDb {
+  void operator()(sqlite3* db) const { sqlite3_close_v2(db); }
+};
+using DbOwner = std::unique_ptr<sqlite3, CloseDb>;
+
+/// The file's schema and meta, committed; returns the open connection and its two insert
+/// statements. Any failure throws (SessionError or whatever SQLite/JSON code throws) and
+/// leaves nothing open.
+struct Opened {
+  DbOwner db;
+  detail::Statement insert_sample, insert_event;
+};
+
+Opened open_new(const std::string& file, const SessionInfo& info, const CheckedInfo& checked) {
+  Opened out;
+  sqlite3* raw = nullptr;
+  const int rc = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr);
+  out.db.reset(raw);  // owned even when the open failed (SQLite allocates a handle then)
+  if (rc != SQLITE_OK) throw SessionError(file, "file", raw != nullptr ? sqlite3_errmsg(raw) : "cannot open");
+  sqlite3* db = out.db.get();
+  sqlite3_extended_result_codes(db, 1);
+  // Another program reading the live file (a viewer, Python) holds locks only briefly.
+  sqlite3_busy_timeout(db, 200);
+  if (detail::query_text(db, "PRAGMA journal_mode=WAL") != "wal") {
+    throw SessionError(file, "file", "cannot use write-ahead logging here");
   }
-  sqlite3_extended_result_codes(db_, 1);
   std::string error;
-  try {
-    if (detail::query_text(db_, "PRAGMA journal_mode=WAL") != "wal") fail("file", "cannot use write-ahead logging here");
-  } catch (const std::runtime_error& e) {
-    fail("file", e.what());
-  }
   std::string schema = "PRAGMA synchronous=NORMAL; BEGIN; PRAGMA application_id=";
   schema += std::to_string(detail::kApplicationId);
   schema += "; PRAGMA user_version=";
   schema += std::to_string(kFormatVersion);
   schema += ";";
   schema += detail::kSchema;
-  if (detail::exec(db_, schema.c_str(), error) != SQLITE_OK) fail("schema", error);
+  if (detail::exec(db, schema.c_str(), error) != SQLITE_OK) throw SessionError(file, "schema", error);
 
+  detail::Statement meta(db, "INSERT INTO meta(key, value) VALUES(?, ?)");
+  const auto put = [&](const char* key, const std::string& value) {
+    sqlite3_bind_text(meta.get(), 1, key, -1, SQLITE_STATIC);
+    sqlite3_bind_text(meta.get(), 2, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT);
+    const int step = sqlite3_step(meta.get());
+    sqlite3_reset(meta.get());
+    if (step != SQLITE_DONE) throw SessionError(file, std::string("meta ") + key, sqlite3_errmsg(db));
+  };
+  put("format", std::string(kFormat));
+  put("format_version", std::to_string(kFormatVersion));
+  put("id", info.id.empty() ? random_id() : info.id);
+  put("trainee", info.trainee);
+  put("device", info.device);
+  put("software_version", info.software_version);
+  put("started_at", info.started_at.empty() ? now_utc() : info.started_at);
+  put("rate_hz", detail::exact_text(info.rate_hz));
+  put("case_source", info.case_source);
+  put("case", checked.case_text);
+  if (info.seed) put("seed", std::to_string(*info.seed));
+  put("extra", checked.extra_text);
+
+  out.insert_sample = detail::Statement(db,
+                                        "INSERT INTO samples(tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, "
+                                        "overrun, fault) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  out.insert_event =
+      detail::Statement(db, "INSERT INTO events(t, kind, mark, x, y, z, note) VALUES(?, ?, ?, ?, ?, ?, ?)");
+  if (detail::exec(db, "COMMIT; BEGIN", error) != SQLITE_OK) throw SessionError(file, "file", error);
+  return out;
+}
+
+}  // namespace
+
+SessionWriter::SessionWriter(const std::filesystem::path& path, const SessionInfo& info) : path_(path) {
+  const std::string file = path.string();
+  const CheckedInfo checked = validate(file, info);
+  create_exclusive(path);
   try {
-    detail::Statement meta(db_, "INSERT INTO meta(key, value) VALUES(?, ?)");
-    const auto put = [&](const char* key, const std::string& value) {
-      sqlite3_bind_text(meta.get(), 1, key, -1, SQLITE_STATIC);
-      sqlite3_bind_text(meta.get(), 2, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT);
-      const int rc = sqlite3_step(meta.get());
-      sqlite3_reset(meta.get());
-      if (rc != SQLITE_DONE) fail(std::string("meta ") + key, sqlite3_errmsg(db_));
-    };
-    put("format", std::string(kFormat));
-    put("format_version", std::to_string(kFormatVersion));
-    put("id", info.id.empty() ? random_id() : info.id);
-    put("trainee", info.trainee);
-    put("device", info.device);
-    put("software_version", info.software_version);
-    put("started_at", info.started_at.empty() ? now_utc() : info.started_at);
-    put("rate_hz", detail::exact_text(info.rate_hz));
-    put("case_source", info.case_source);
-    put("case", info.case_document.dump());
-    if (info.seed) put("seed", std::to_string(*info.seed));
-    put("extra", info.extra.dump());
-
-    detail::Statement sample(db_,
-                             "INSERT INTO samples(tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, "
-                             "fault) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    detail::Statement event(db_, "INSERT INTO events(t, kind, mark, x, y, z, note) VALUES(?, ?, ?, ?, ?, ?, ?)");
-    if (detail::exec(db_, "COMMIT; BEGIN", error) != SQLITE_OK) fail("file", error);
-    insert_sample_ = sample.release();  // finalized in close()
-    insert_event_ = event.release();
-  } catch (const std::runtime_error& e) {
-    if (dynamic_cast<const SessionError*>(&e) != nullptr) throw;
-    fail("file", e.what());
+    Opened opened = open_new(file, info, checked);
+    // Statements first: they must be finalized before the connection closes (close()).
+    insert_sample_ = opened.insert_sample.release();
+    insert_event_ = opened.insert_event.release();
+    db_ = opened.db.release();
+    bodies_ = checked.bodies;
+  } catch (...) {
+    // Everything opened is closed by now. The file is ours (created with O_EXCL just now)
+    // and holds nothing yet: leave no half-made session behind.
+    std::error_code ec;
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+      auto p = path;
+      p += suffix;
+      std::filesystem::remove(p, ec);
+    }
+    try {
+      throw;
+    } catch (const SessionError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw SessionError(file, "file", e.what());
+    } catch (...) {
+      throw SessionError(file, "file", "unknown error while creating the session");
+    }
   }
 }
 
@@ -205,27 +257,82 @@ void require_open(sqlite3* db, const std::filesystem::path& path, const char* wh
 void SessionWriter::append(const engine::Sample& s) {
   require_open(db_, path_, "samples");
   const auto tick = static_cast<sqlite3_int64>(samples_);
+  const auto where = [&](const char* column) {
+    std::string w = "samples tick ";
+    w += std::to_string(tick);
+    w += ": column ";
+    w += column;
+    return w;
+  };
   const std::array<double, 7> values{s.t, s.position[0], s.position[1], s.position[2], s.force[0], s.force[1], s.force[2]};
   static constexpr std::array<const char*, 10> kNames{"t", "x", "y", "z", "fx", "fy", "fz", "u", "v", "depth"};
-  const auto not_finite = [&](std::size_t column) {
-    std::string where = "samples tick ";
-    where += std::to_string(tick);
-    where += ": column ";
-    where += kNames[column];
-    return SessionError(path_.string(), where, "not a finite number");
-  };
-  sqlite3_stmt* st = insert_sample_;
-  sqlite3_bind_int64(st, 1, tick);
+  // SQLite would store NaN as NULL and fail the NOT NULL constraint with a vaguer message.
   for (std::size_t k = 0; k < values.size(); ++k) {
-    // SQLite would store NaN as NULL and fail the NOT NULL constraint with a vaguer message.
-    if (!std::isfinite(values[k])) throw not_finite(k);
-    sqlite3_bind_double(st, static_cast<int>(k) + 2, values[k]);
+    if (!std::isfinite(values[k])) throw SessionError(path_.string(), where(kNames[k]), "not a finite number");
+  }
+  if (samples_ > 0 && s.t < last_t_) {
+    std::string reason = "time goes backwards (";
+    reason += detail::exact_text(s.t);
+    reason += " s after ";
+    reason += detail::exact_text(last_t_);
+    reason += " s)";
+    throw SessionError(path_.string(), where("t"), reason);
   }
   if (s.body >= 0) {
+    if (static_cast<std::size_t>(s.body) >= bodies_) {
+      std::string reason = "the case has ";
+      reason += std::to_string(bodies_);
+      reason += " bodies, there is no body ";
+      reason += std::to_string(s.body);
+      throw SessionError(path_.string(), where("body"), reason);
+    }
     const std::array<double, 3> contact{s.u, s.v, s.depth};
     for (std::size_t k = 0; k < contact.size(); ++k) {
-      if (!std::isfinite(contact[k])) throw not_finite(7 + k);
+      if (!std::isfinite(contact[k])) throw SessionError(path_.string(), where(kNames[7 + k]), "not a finite number");
     }
+  }
+  insert(s);
+}
+
+bool SessionWriter::append_repairing(const engine::Sample& sample) {
+  require_open(db_, path_, "samples");
+  engine::Sample s = sample;
+  bool repaired = false;
+  const auto zero_if_not_finite = [&](double& x) {
+    if (!std::isfinite(x)) {
+      x = 0.0;
+      repaired = true;
+    }
+  };
+  for (auto& x : s.position) zero_if_not_finite(x);
+  for (auto& x : s.force) zero_if_not_finite(x);
+  const double t_floor = samples_ > 0 ? last_t_ : 0.0;
+  if (!std::isfinite(s.t) || (samples_ > 0 && s.t < last_t_)) {
+    s.t = t_floor;
+    repaired = true;
+  }
+  if (s.body >= 0 && (static_cast<std::size_t>(s.body) >= bodies_ || !std::isfinite(s.u) || !std::isfinite(s.v) ||
+                      !std::isfinite(s.depth))) {
+    s.body = -1;
+    s.u = s.v = s.depth = 0.0;
+    repaired = true;
+  }
+  if (repaired) {
+    s.fault = true;
+    ++repaired_;
+  }
+  insert(s);
+  return !repaired;
+}
+
+// Binds and inserts a checked sample as tick samples_.
+void SessionWriter::insert(const engine::Sample& s) {
+  const auto tick = static_cast<sqlite3_int64>(samples_);
+  sqlite3_stmt* st = insert_sample_;
+  sqlite3_bind_int64(st, 1, tick);
+  const std::array<double, 7> values{s.t, s.position[0], s.position[1], s.position[2], s.force[0], s.force[1], s.force[2]};
+  for (std::size_t k = 0; k < values.size(); ++k) sqlite3_bind_double(st, static_cast<int>(k) + 2, values[k]);
+  if (s.body >= 0) {
     sqlite3_bind_int(st, 9, s.body);
     sqlite3_bind_double(st, 10, s.u);
     sqlite3_bind_double(st, 11, s.v);
@@ -244,24 +351,13 @@ void SessionWriter::append(const engine::Sample& s) {
     throw SessionError(path_.string(), where, sqlite3_errmsg(db_));
   }
   ++samples_;
+  last_t_ = s.t;
 }
 
 void SessionWriter::event(const Event& e) {
   require_open(db_, path_, "events");
-  std::string where = "events ";
-  where += to_string(e.kind);
-  where += " at t=";
-  where += detail::exact_text(e.t);
-  if (!std::isfinite(e.t)) throw SessionError(path_.string(), where, "the time is not a finite number");
+  check_event(path_.string(), e);
   const bool has_mark = e.kind == EventKind::Mark || e.kind == EventKind::Unmark;
-  if (has_mark && e.mark < 1) {
-    throw SessionError(path_.string(), where, "a mark id must be >= 1, not " + std::to_string(e.mark));
-  }
-  if (e.kind == EventKind::Mark) {
-    for (double x : e.position) {
-      if (!std::isfinite(x)) throw SessionError(path_.string(), where, "the mark's position is not finite");
-    }
-  }
   sqlite3_stmt* st = insert_event_;
   sqlite3_bind_double(st, 1, e.t);
   const auto kind = to_string(e.kind);
@@ -281,15 +377,32 @@ void SessionWriter::event(const Event& e) {
   sqlite3_bind_text(st, 7, e.note.data(), static_cast<int>(e.note.size()), SQLITE_TRANSIENT);
   const int rc = sqlite3_step(st);
   sqlite3_reset(st);
-  if (rc != SQLITE_DONE) throw SessionError(path_.string(), where, sqlite3_errmsg(db_));
+  if (rc != SQLITE_DONE) {
+    std::string where = "events ";
+    where += to_string(e.kind);
+    where += " at t=";
+    where += detail::exact_text(e.t);
+    throw SessionError(path_.string(), where, sqlite3_errmsg(db_));
+  }
 }
 
-void SessionWriter::set_loop_stats(const engine::LoopStats& stats) { set_loop_stats(loop_stats_json(stats)); }
+void SessionWriter::set_loop_stats(const engine::LoopStats& stats) {
+  auto summary = loop_stats_json(stats);
+  summary["repaired"] = repaired_;
+  set_loop_stats(summary);
+}
+
+void SessionWriter::set_loop_stats(const engine::LoopStats& stats, std::uint64_t dropped_samples) {
+  auto summary = loop_stats_json(stats);
+  summary["dropped"] = dropped_samples;
+  summary["repaired"] = repaired_;
+  set_loop_stats(summary);
+}
 
 void SessionWriter::set_loop_stats(const nlohmann::json& summary) {
   require_open(db_, path_, "meta loop_stats");
+  const std::string text = detail::dump_json(path_.string(), "meta loop_stats", summary);
   detail::Statement put(db_, "INSERT OR REPLACE INTO meta(key, value) VALUES('loop_stats', ?)");
-  const std::string text = summary.dump();
   sqlite3_bind_text(put.get(), 1, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
   if (sqlite3_step(put.get()) != SQLITE_DONE) throw SessionError(path_.string(), "meta loop_stats", sqlite3_errmsg(db_));
 }
@@ -320,19 +433,30 @@ void SessionWriter::finish() {
   sqlite3_finalize(insert_event_);
   insert_sample_ = nullptr;
   insert_event_ = nullptr;
-  // Everything into the main file, then back to a rollback journal: a finished session is
-  // one self-contained file that can be copied and opened read-only anywhere.
-  if (detail::exec(db_, "PRAGMA wal_checkpoint(TRUNCATE)", error) != SQLITE_OK) {
-    throw SessionError(file, "finish", error);
-  }
-  try {
-    if (detail::query_text(db_, "PRAGMA journal_mode=DELETE") != "delete") {
-      throw SessionError(file, "finish", "cannot leave write-ahead logging (is another program reading the session?)");
+  // Everything is committed. Now, if no other program has the file open: everything into
+  // the main file, then back to a rollback journal, so a finished session is one
+  // self-contained file that can be copied and opened read-only anywhere. With a reader
+  // open, the checkpoint stops short and the switch needs an exclusive lock it cannot
+  // have: the session stays in WAL mode, complete, which is a warning and not an error.
+  bool single_file = false;
+  for (int attempt = 0; attempt < 3 && !single_file; ++attempt) {
+    if (attempt > 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (detail::exec(db_, "PRAGMA wal_checkpoint(TRUNCATE)", error) != SQLITE_OK) continue;
+    try {
+      single_file = detail::query_text(db_, "PRAGMA journal_mode=DELETE") == "delete";
+    } catch (const std::runtime_error& e) {
+      error = e.what();
     }
-  } catch (const SessionError&) {
-    throw;
-  } catch (const std::runtime_error& e) {
-    throw SessionError(file, "finish", e.what());
+  }
+  if (!single_file) {
+    warning_ = file;
+    warning_ += ": finish: left in write-ahead-log mode (keep its -wal and -shm beside it): ";
+    warning_ += "another program has the session open";
+    if (!error.empty()) {
+      warning_ += " (";
+      warning_ += error;
+      warning_ += ")";
+    }
   }
   if (sqlite3_close(db_) != SQLITE_OK) throw SessionError(file, "finish", sqlite3_errmsg(db_));
   db_ = nullptr;

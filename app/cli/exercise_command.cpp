@@ -1,0 +1,127 @@
+// palpa-cli exercise CASE --trainee ID [--style expert|sloppy|light] [--seed N] --out SESSION:
+// a scripted trainee palpates the case through the haptic engine (deterministically, as
+// fast as the machine allows), the session is recorded and scored. The headless demo of
+// the README's run command.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+
+#include "commands.hpp"
+#include "palpa/exercise/exercise.hpp"
+#include "palpa/exercise/scripted_trainee.hpp"
+#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session_reader.hpp"
+#include "palpa/session/session_writer.hpp"
+
+namespace palpa::cli {
+namespace {
+
+struct ExerciseCliOptions {
+  std::string case_path;
+  std::string trainee;
+  std::string style = "expert";
+  std::optional<std::uint64_t> seed;
+  std::string out_path;
+  bool json = false;
+};
+
+/// A seed nobody chose: every attempt meets its tumours somewhere new, and the session
+/// records the seed so the attempt can be repeated.
+std::uint64_t fresh_seed() {
+  std::random_device device;
+  return (static_cast<std::uint64_t>(device()) << 32) ^ device();
+}
+
+int run_exercise_command(const ExerciseCliOptions& o) {
+  const auto style = exercise::style_from_string(o.style);
+  if (!style) {
+    print_error("--style: unknown style \"" + o.style + "\" (expert, sloppy or light)");
+    return kBadInput;
+  }
+  const std::uint64_t seed = o.seed ? *o.seed : fresh_seed();
+  std::unique_ptr<scene::Scene> scene;
+  io::CaseFile placed;
+  try {
+    placed = exercise::place_tumours(io::load_case(o.case_path), seed, o.case_path);
+    scene = std::make_unique<scene::Scene>(scene::Scene::build(placed, o.case_path));
+  } catch (const io::CaseError& e) {
+    for (const auto& line : e.lines()) print_error(line);
+    return kBadInput;
+  }
+
+  exercise::ScriptedTrainee trainee(*scene, exercise::whole_top_contours(*scene), *style, seed);
+  const auto info = exercise::exercise_session_info(placed, o.case_path, seed, *style, o.trainee,
+                                                    trainee.capabilities().name, exercise::iso8601_utc_now());
+  exercise::ExerciseSummary summary;
+  try {
+    session::SessionWriter writer(o.out_path, info);
+    std::uint64_t since_commit = 0;
+    summary = exercise::run_exercise(
+        *scene, trainee,
+        [&](const engine::Sample& s) {
+          writer.append(s);
+          if (++since_commit == 1000) {  // one commit per simulated second, as a live recording
+            writer.commit();
+            since_commit = 0;
+          }
+        },
+        [&](const session::Event& e) { writer.event(e); });
+    writer.finish();
+  } catch (const session::SessionError& e) {
+    print_error(e.what());
+    return e.where() == "file" ? kBadInput : kFailure;
+  }
+  std::fprintf(stderr, "exercise: %s palpated %s (seed %llu): %.1f s, %llu ticks, %lld marks, recorded in %s\n",
+               o.trainee.c_str(), o.case_path.c_str(), static_cast<unsigned long long>(seed), summary.duration,
+               static_cast<unsigned long long>(summary.ticks), static_cast<long long>(summary.marks),
+               o.out_path.c_str());
+
+  // Score what was recorded, read back from the file: the same path `palpa-cli score` takes.
+  try {
+    const auto recorded = session::read_session(o.out_path);
+    const auto score = score::score_session(recorded, o.out_path);
+    if (o.json) {
+      std::printf("%s\n", score::to_json(score).dump(2).c_str());
+    } else {
+      std::printf("%s", score::summary_text(score).c_str());
+    }
+  } catch (const session::SessionError& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Command add_exercise_command(CLI::App& parent) {
+  auto o = std::make_shared<ExerciseCliOptions>();
+  auto* app = parent.add_subcommand(
+      "exercise",
+      "Run a whole scripted exercise on CASE: a scripted trainee palpates through the haptic engine at 1 kHz "
+      "(deterministic, as fast as possible), the session is recorded to --out and scored; the score card "
+      "(or --json) goes to standard output. Tumours with a placement rule are placed from --seed.");
+  app->add_option("CASE", o->case_path, "case file (JSON)")->required();
+  app->add_option("--trainee", o->trainee, "trainee id recorded in the session")
+      ->required()
+      ->check([](const std::string& id) { return id.empty() ? std::string("must not be empty") : std::string(); });
+  app->add_option("--style", o->style,
+                  "expert: strips a finger pad apart at light, medium and deep pressure, marks what it feels; "
+                  "sloppy: gaps, medium pressure, wrong marks; light: too light to reach deep tumours "
+                  "(default expert)");
+  app->add_option("--seed", o->seed,
+                  "seed for tumour placement and the trainee's random choices; default: a fresh one, printed and "
+                  "recorded in the session")
+      ->check(CLI::NonNegativeNumber);
+  app->add_option("--out", o->out_path, "session file to create (never overwritten; suggested extension .palpa)")
+      ->required();
+  app->add_flag("--json", o->json, "print the score as JSON instead of the score card");
+  return {app, [o] { return run_exercise_command(*o); }};
+}
+
+}  // namespace palpa::cli
