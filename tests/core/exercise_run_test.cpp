@@ -126,15 +126,21 @@ TEST(Exercise, AuthoredTumourExpertMarksItLightDoesNotSloppyMarksElsewhere) {
   expect_sloppy_false_marks(scene, tumour, run(scene, exercise::whole_top_contours(scene), Style::Sloppy, 1));
 }
 
+// The expert's exam of the region around the authored tumour, run once for the tests
+// that only read it.
+const Run& authored_expert_run() {
+  static const auto scene = scene::Scene::build(default_case(), "default.json");
+  static const Run r = run(scene, kNearAuthored, Style::Expert, 1);
+  return r;
+}
+
 double force_norm(const engine::Sample& s) { return Vec3(s.force[0], s.force[1], s.force[2]).norm(); }
 
 // The expert limits its force: over the authored mass its deep presses reach the limit
 // and hold there, so the peak stays at the limit (the engine's cap is 30 N), and each
 // press is judged by the indentation it actually held.
 TEST(Exercise, ExpertPressesAreForceLimited) {
-  const auto file = default_case();
-  const auto scene = scene::Scene::build(file, "default.json");
-  const auto r = run(scene, kNearAuthored, Style::Expert, 1);
+  const auto& r = authored_expert_run();
   const double limit = r.parameters.force_limit;
   EXPECT_EQ(limit, 15.0);
   double peak = 0.0;
@@ -164,9 +170,7 @@ TEST(Exercise, ExpertPressesAreForceLimited) {
 // MammaCare strips: between the presses of one strip the pads stay in contact and slide;
 // the finger lifts between strips.
 TEST(Exercise, ExpertSlidesInContactAlongAStripAndLiftsBetweenStrips) {
-  const auto file = default_case();
-  const auto scene = scene::Scene::build(file, "default.json");
-  const auto r = run(scene, kNearAuthored, Style::Expert, 1);
+  const auto& r = authored_expert_run();
   ASSERT_GE(r.spots.size(), 10u);
   auto tick = [&](double t) { return static_cast<std::size_t>(std::lround(t * 1000.0)); };
   int slides = 0, lifts = 0;
