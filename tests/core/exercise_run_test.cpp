@@ -25,6 +25,10 @@ struct Run {
   std::vector<Vec3> marks;
   bool felt_equals_sent = true;
   double finish_time = 0.0;
+  // The trainee's own record of its presses.
+  std::vector<exercise::Spot> spots;
+  std::vector<double> held, pressed_force, stiffness, measure_times;
+  exercise::StyleParameters parameters;
 };
 
 Run run(const scene::Scene& scene, const std::vector<exercise::ExamRect>& region, Style style, std::uint64_t seed) {
@@ -43,6 +47,12 @@ Run run(const scene::Scene& scene, const std::vector<exercise::ExamRect>& region
         if (e.kind == session::EventKind::Mark) r.marks.emplace_back(e.position[0], e.position[1], e.position[2]);
       });
   r.finish_time = trainee.finish_time();
+  r.spots = trainee.spots();
+  r.held = trainee.held_indentation();
+  r.pressed_force = trainee.pressed_force();
+  r.stiffness = trainee.measured_stiffness();
+  r.measure_times = trainee.measure_times();
+  r.parameters = trainee.parameters();
   return r;
 }
 
@@ -114,6 +124,79 @@ TEST(Exercise, AuthoredTumourExpertMarksItLightDoesNotSloppyMarksElsewhere) {
   expect_expert_finds(scene, tumour, run(scene, kNearAuthored, Style::Expert, 1));
   expect_light_misses(scene, run(scene, kNearAuthored, Style::Light, 1));
   expect_sloppy_false_marks(scene, tumour, run(scene, exercise::whole_top_contours(scene), Style::Sloppy, 1));
+}
+
+// The expert's exam of the region around the authored tumour, run once for the tests
+// that only read it.
+const Run& authored_expert_run() {
+  static const auto scene = scene::Scene::build(default_case(), "default.json");
+  static const Run r = run(scene, kNearAuthored, Style::Expert, 1);
+  return r;
+}
+
+double force_norm(const engine::Sample& s) { return Vec3(s.force[0], s.force[1], s.force[2]).norm(); }
+
+// The expert limits its force: over the authored mass its deep presses reach the limit
+// and hold there, so the peak stays at the limit (the engine's cap is 30 N), and each
+// press is judged by the indentation it actually held.
+TEST(Exercise, ExpertPressesAreForceLimited) {
+  const auto& r = authored_expert_run();
+  const double limit = r.parameters.force_limit;
+  EXPECT_EQ(limit, 15.0);
+  double peak = 0.0;
+  for (const auto& s : r.samples) peak = std::max(peak, force_norm(s));
+  // Tolerance: the engine's force settles with a transient of up to ~1.5 N after a press
+  // stops (also below the limit); the loop itself stops within a tick's rise.
+  EXPECT_LE(peak, limit + 1.5);
+  EXPECT_GE(peak, limit - 0.5);  // the limit, not the plan, bounded the presses here
+  const double deep = r.parameters.levels[static_cast<std::size_t>(r.parameters.level_count - 1)];
+  int limited = 0, pressed = 0;
+  for (std::size_t i = 0; i < r.spots.size(); ++i) {
+    if (r.measure_times[i] < 0.0) continue;
+    ++pressed;
+    const double planned = deep * r.spots[i].thickness;
+    EXPECT_LE(r.held[i], planned + 1e-12);
+    EXPECT_NEAR(r.stiffness[i], r.pressed_force[i] / r.held[i], 1e-9 * r.stiffness[i]);
+    if (r.held[i] < 0.95 * planned) {
+      ++limited;
+      EXPECT_GE(r.pressed_force[i], limit - 1.0);  // held short only because the limit was felt
+    }
+  }
+  EXPECT_EQ(pressed, static_cast<int>(r.spots.size()));
+  EXPECT_GE(limited, 3);  // the spots over the mass (1500 N/m) cannot reach half the thickness at 15 N
+  EXPECT_LT(limited, pressed / 4);
+}
+
+// MammaCare strips: between the presses of one strip the pads stay in contact and slide;
+// the finger lifts between strips.
+TEST(Exercise, ExpertSlidesInContactAlongAStripAndLiftsBetweenStrips) {
+  const auto& r = authored_expert_run();
+  ASSERT_GE(r.spots.size(), 10u);
+  auto tick = [&](double t) { return static_cast<std::size_t>(std::lround(t * 1000.0)); };
+  int slides = 0, lifts = 0;
+  for (std::size_t i = 0; i + 1 < r.spots.size(); ++i) {
+    const std::size_t a = tick(r.measure_times[i]), b = tick(r.measure_times[i + 1]);
+    ASSERT_LT(a, b);
+    ASSERT_LT(b, r.samples.size());
+    // At each measure the probe holds the spot's press.
+    for (std::size_t j : {i, i + 1}) {
+      const auto& p = r.samples[tick(r.measure_times[j])].position;
+      const Vec3 held = r.spots[j].top - r.held[j] * r.spots[j].normal;
+      EXPECT_LT((Vec3(p[0], p[1], p[2]) - held).norm(), 1e-4) << "spot " << j;
+    }
+    std::size_t out_of_contact = 0;
+    for (std::size_t k = a; k <= b; ++k) out_of_contact += r.samples[k].body < 0 ? 1u : 0u;
+    if (r.spots[i].strip == r.spots[i + 1].strip) {
+      // From one press to the next, spot_step apart, without leaving the skin: a slide.
+      EXPECT_GT((r.spots[i + 1].top - r.spots[i].top).norm(), 0.5 * r.parameters.spot_step);
+      EXPECT_EQ(out_of_contact, 0u) << "spots " << i << " and " << i + 1;
+      ++slides;
+    } else {
+      EXPECT_GT(out_of_contact, 0u) << "strip change after spot " << i;
+      ++lifts;
+    }
+  }
+  EXPECT_GT(slides, 5 * lifts);
 }
 
 // The full exams on placed tumours (about 150 s of simulated time each for the expert):

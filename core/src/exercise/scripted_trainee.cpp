@@ -46,11 +46,13 @@ StyleParameters parameters_for(Style style) {
       p.level_count = 1;
       p.false_marks_min = 2;
       p.false_marks_max = 3;
+      p.slide = false;  // hops from spot to spot
       break;
     case Style::Light:
       // The expert's coverage, but it never presses past a fifth of the tissue.
       p.levels = {0.08, 0.15, 0.0};
       p.level_count = 2;
+      p.slide_level = 0.08;
       break;
   }
   return p;
@@ -63,6 +65,11 @@ constexpr double kTransitStep = 0.005;  // m between the lifted waypoints of a g
 constexpr int kMaxTransitPoints = 48;
 constexpr double kBodyChangeLift = 0.03;  // m above the surface when moving to another body
 constexpr std::size_t kDetourCapacity = 8192;
+// Over the force limit by more than this (N, e.g. the tissue creeping under a held
+// press), the press backs off by a step each tick until it is back under.
+constexpr double kBackoffMargin = 0.2;
+constexpr double kBackoffStep = 2e-5;  // m per tick
+constexpr double kNoCap = std::numeric_limits<double>::infinity();
 
 // Cumulative arc length of the top contour along a parameter line (kArcSamples + 1 values).
 template <typename Point>
@@ -120,6 +127,11 @@ ScriptedTrainee::ScriptedTrainee(const scene::Scene& scene, const std::vector<Ex
   plan(region);
   const std::size_t n = spots_.size();
   stiffness_.assign(n, 0.0);
+  held_.assign(n, 0.0);
+  pressed_force_.assign(n, 0.0);
+  measure_time_.assign(n, -1.0);
+  curve_.assign(n * kDepthGrid, 0.0);
+  cap_ = kNoCap;
   ratio_.assign(n, 0.0);
   suspicious_.assign(n, 0);
   scratch_.reserve(n);
@@ -128,6 +140,7 @@ ScriptedTrainee::ScriptedTrainee(const scene::Scene& scene, const std::vector<Ex
   events_.reserve(n + 8);
   detour_.reserve(kDetourCapacity);
   if (!scan_.empty()) from_ = scan_.front().position;
+  last_pose_ = from_;
 }
 
 double ScriptedTrainee::max_depth_fraction() const {
@@ -144,21 +157,38 @@ void ScriptedTrainee::plan(const std::vector<ExamRect>& region) {
   }
   strip_first_.push_back(static_cast<int>(spots_.size()));
 
-  // The scan: glide (lifted) to each spot, press, and note each strip's end.
+  // The scan: glide (lifted) to the first spot of each strip and touch down; press at each
+  // spot and slide in contact to the next (or lift and glide, when the style does not
+  // slide); lift at the strip's end and note it.
+  const double v = params_.press_speed;
+  double depth = 0.0;  // below the current spot's top, where the last press left the probe
   for (std::size_t i = 0; i < spots_.size(); ++i) {
     const Spot& s = spots_[i];
-    const Vec3 above = s.top + params_.lift * s.normal;
-    if (i == 0) {
-      scan_.push_back({above, 0.0, Action::None, -1, 0.0});
-    } else {
-      const Spot& p = spots_[i - 1];
-      add_glide(scan_, p.body, p.u, p.v, s.body, s.u, s.v, scan_.back().position);
-    }
-    add_press(scan_, s, static_cast<int>(i), scan_.back().position, true);
+    const bool strip_starts = i == 0 || spots_[i - 1].strip != s.strip;
     const bool strip_ends = i + 1 == spots_.size() || spots_[i + 1].strip != s.strip;
-    if (strip_ends) scan_.push_back({scan_.back().position, 0.0, Action::StripEnd, s.strip, 0.0});
+    const bool slide_on = params_.slide && !strip_ends;
+    if (strip_starts || !params_.slide) {
+      const Vec3 above = s.top + params_.lift * s.normal;
+      if (i == 0) {
+        scan_.push_back({above, 0.0, Action::None, -1});
+      } else {
+        const Spot& p = spots_[i - 1];
+        add_glide(scan_, p.body, p.u, p.v, s.body, s.u, s.v, scan_.back().position);
+      }
+      scan_.push_back(press_to(s.top, s.normal, 0.0, params_.lift / v, params_.force_limit));
+      depth = 0.0;
+    }
+    const double leave = slide_on ? params_.slide_level * s.thickness : 0.0;
+    add_press(scan_, s, static_cast<int>(i), depth, leave);
+    if (slide_on) {
+      add_slide(scan_, s, spots_[i + 1]);
+      depth = params_.slide_level * spots_[i + 1].thickness;
+    } else {
+      scan_.push_back({s.top + params_.lift * s.normal, params_.lift / v, Action::None, -1});
+    }
+    if (strip_ends) scan_.push_back({scan_.back().position, 0.0, Action::StripEnd, s.strip});
   }
-  if (!scan_.empty()) scan_.push_back({scan_.back().position, 0.0, Action::End, -1, 0.0});
+  if (!scan_.empty()) scan_.push_back({scan_.back().position, 0.0, Action::End, -1});
   for (const auto& w : scan_) scan_duration_ += w.duration;
 }
 
@@ -209,21 +239,55 @@ void ScriptedTrainee::plan_rect(const ExamRect& rect, int& strip) {
   }
 }
 
-void ScriptedTrainee::add_press(std::vector<Waypoint>& out, const Spot& spot, int spot_index, const Vec3& from,
-                                bool measure) const {
+ScriptedTrainee::Waypoint ScriptedTrainee::press_to(const Vec3& top, const Vec3& normal, double indentation,
+                                                    double duration, double force_limit, Action action, int index) {
+  Waypoint w;
+  w.position = top - indentation * normal;
+  w.duration = duration;
+  w.action = action;
+  w.index = index;
+  w.press = true;
+  w.indentation = indentation;
+  w.normal = normal;
+  w.force_limit = force_limit;
+  return w;
+}
+
+void ScriptedTrainee::add_press(std::vector<Waypoint>& out, const Spot& spot, int spot_index, double from_depth,
+                                double to_depth) const {
   const double v = params_.press_speed;
-  out.push_back({spot.top, (spot.top - from).norm() / v, Action::None, -1, 0.0});
-  double depth = 0.0;
+  const double limit = params_.force_limit;
+  double depth = from_depth;
   for (int l = 0; l < params_.level_count; ++l) {
     const double target = params_.levels[static_cast<std::size_t>(l)] * spot.thickness;
-    const Vec3 p = spot.top - target * spot.normal;
-    out.push_back({p, std::abs(target - depth) / v, Action::None, -1, 0.0});
+    out.push_back(press_to(spot.top, spot.normal, target, std::abs(target - depth) / v, limit));
+    out.back().spot = spot_index;
     const bool deepest = l + 1 == params_.level_count;
-    out.push_back({p, params_.hold, measure && deepest ? Action::Measure : Action::None, spot_index, target});
+    out.push_back(press_to(spot.top, spot.normal, target, params_.hold, limit,
+                           deepest ? Action::Measure : Action::None, deepest ? spot_index : -1));
+    out.back().spot = spot_index;
     depth = target;
   }
-  out.push_back({spot.top, depth / v, Action::None, -1, 0.0});
-  out.push_back({spot.top + params_.lift * spot.normal, params_.lift / v, Action::None, -1, 0.0});
+  out.push_back(press_to(spot.top, spot.normal, to_depth, std::abs(depth - to_depth) / v, limit));
+}
+
+void ScriptedTrainee::add_slide(std::vector<Waypoint>& out, const Spot& from, const Spot& to) const {
+  const auto& mb = scene_->body(to.body).body;
+  const Vec3 start = from.top - params_.slide_level * from.thickness * from.normal;
+  const Vec3 end = to.top - params_.slide_level * to.thickness * to.normal;
+  const int n = std::clamp(static_cast<int>(std::ceil((end - start).norm() / kTransitStep)), 1, kMaxTransitPoints);
+  Vec3 prev = start;
+  for (int k = 1; k <= n; ++k) {
+    // Along the strip's parameter line at the slide level of the local thickness.
+    const double a = static_cast<double>(k) / n;
+    Vec3 p = end;
+    if (k < n) {
+      const auto f = frame_at(mb, from.u + a * (to.u - from.u), from.v + a * (to.v - from.v));
+      p = f.top - params_.slide_level * 2.0 * f.radius * f.normal;
+    }
+    out.push_back({p, (p - prev).norm() / params_.move_speed, Action::None, -1});
+    prev = p;
+  }
 }
 
 void ScriptedTrainee::add_transit(std::vector<Waypoint>& out, std::size_t body, double u0, double v0, double u1,
@@ -242,7 +306,7 @@ void ScriptedTrainee::add_transit(std::vector<Waypoint>& out, std::size_t body, 
       const auto f = frame_at(mb, u0 + a * (u1 - u0), v0 + a * (v1 - v0));
       p = f.top + params_.lift * f.normal;
     }
-    out.push_back({p, (p - prev).norm() / params_.move_speed, Action::None, -1, 0.0});
+    out.push_back({p, (p - prev).norm() / params_.move_speed, Action::None, -1});
     prev = p;
   }
 }
@@ -258,7 +322,7 @@ void ScriptedTrainee::add_glide(std::vector<Waypoint>& out, std::size_t from_bod
   Vec3 prev = from;
   for (const Vec3& p : {Vec3(a.top + kBodyChangeLift * a.normal), Vec3(b.top + kBodyChangeLift * b.normal),
                         Vec3(b.top + params_.lift * b.normal)}) {
-    out.push_back({p, (p - prev).norm() / params_.move_speed, Action::None, -1, 0.0});
+    out.push_back({p, (p - prev).norm() / params_.move_speed, Action::None, -1});
     prev = p;
   }
 }
@@ -287,14 +351,20 @@ engine::DeviceStatus ScriptedTrainee::read(double t, engine::DevicePose& pose) n
       pose.position = from_;
       return engine::DeviceStatus::Ok;
     }
+    if (w->press) {
+      regulate(*w);
+    } else {
+      cap_ = kNoCap;  // a new press starts uncapped
+    }
     if (t < segment_start_ + w->duration) {
       const double a = (t - segment_start_) / w->duration;
-      pose.position = from_ + std::clamp(a, 0.0, 1.0) * (w->position - from_);
+      pose.position = from_ + std::clamp(a, 0.0, 1.0) * (target_of(*w) - from_);
+      last_pose_ = pose.position;
       return engine::DeviceStatus::Ok;
     }
     const Waypoint done = *w;
     segment_start_ += done.duration;
-    from_ = done.position;
+    from_ = target_of(done);
     if (in_detour_) {
       ++next_detour_;
     } else {
@@ -304,7 +374,58 @@ engine::DeviceStatus ScriptedTrainee::read(double t, engine::DevicePose& pose) n
   }
 }
 
+Vec3 ScriptedTrainee::target_of(const Waypoint& w) const noexcept {
+  if (!w.press || w.indentation <= cap_) return w.position;
+  return w.position + (w.indentation - cap_) * w.normal;
+}
+
+void ScriptedTrainee::regulate(const Waypoint& w) noexcept {
+  const double felt = force_.norm();
+  const Vec3 top = w.position + w.indentation * w.normal;
+  double reached = (top - last_pose_).dot(w.normal);
+  if (w.spot >= 0) {
+    // The force-depth curve while pressing in: |F| where the depth crossed each grid
+    // point, interpolated between the last two ticks.
+    const auto spot = static_cast<std::size_t>(w.spot);
+    const double fraction = reached / spots_[spot].thickness;
+    if (curve_spot_ != w.spot) {
+      curve_spot_ = w.spot;
+      curve_fraction_ = fraction;
+      curve_force_ = felt;
+    } else if (fraction > curve_fraction_) {
+      for (int k = 1; k < kDepthGrid; ++k) {
+        const double g = k * kDepthStep;
+        if (g <= curve_fraction_ || g > fraction) continue;
+        const double a = (g - curve_fraction_) / (fraction - curve_fraction_);
+        curve_[spot * kDepthGrid + static_cast<std::size_t>(k)] = curve_force_ + a * (felt - curve_force_);
+      }
+      curve_fraction_ = fraction;
+      curve_force_ = felt;
+    }
+  }
+  // Stop where the next tick would reach the limit at the force's current rise (a person
+  // slows down before the limit, too), so the peak overshoots it by little.
+  if (felt + std::max(0.0, felt - previous_felt_) < w.force_limit) return;
+  // force_ was felt at last_pose_: hold that indentation (or a little less while the
+  // force stays over the limit) for the rest of the press.
+  if (felt > w.force_limit + kBackoffMargin) reached -= kBackoffStep;
+  cap_ = std::min(cap_, std::max(0.0, reached));
+}
+
+double ScriptedTrainee::stiffness_at(std::size_t spot, int k) const noexcept {
+  const double f = curve_[spot * kDepthGrid + static_cast<std::size_t>(k)];
+  return f > 0.0 ? f / (k * kDepthStep * spots_[spot].thickness) : 0.0;
+}
+
+int ScriptedTrainee::deepest_grid(std::size_t spot) const noexcept {
+  for (int k = kDepthGrid - 1; k >= 1; --k) {
+    if (curve_[spot * kDepthGrid + static_cast<std::size_t>(k)] > 0.0) return k;
+  }
+  return -1;
+}
+
 engine::DeviceStatus ScriptedTrainee::write_force(const Vec3& force) noexcept {
+  previous_felt_ = force_.norm();
   force_ = force;
   return engine::DeviceStatus::Ok;
 }
@@ -329,9 +450,16 @@ void ScriptedTrainee::complete(const Waypoint& w, double t) noexcept {
   switch (w.action) {
     case Action::None: break;
     case Action::Measure:
-      // The hold has lasted long enough for the force to settle: judge the press by it.
-      if (w.indentation > 0.0) stiffness_[static_cast<std::size_t>(w.index)] = force_.norm() / w.indentation;
+    {
+      // The hold has lasted long enough for the force to settle: judge the press by it and
+      // the indentation actually held.
+      const auto i = static_cast<std::size_t>(w.index);
+      held_[i] = std::min(w.indentation, cap_);
+      pressed_force_[i] = force_.norm();
+      measure_time_[i] = t;
+      if (held_[i] > 0.0) stiffness_[i] = pressed_force_[i] / held_[i];
       break;
+    }
     case Action::StripEnd: {
       // A strip is judged once the next one is done, so its neighbourhood lies on both
       // sides of it; the last strip is judged with what there is.
@@ -346,9 +474,13 @@ void ScriptedTrainee::complete(const Waypoint& w, double t) noexcept {
       break;
     }
     case Action::Repalpate: {
+      // Compared with the neighbourhood at the same depth fraction.
       Finding& f = findings_[static_cast<std::size_t>(w.index)];
-      if (w.indentation > 0.0) f.felt = force_.norm() / w.indentation;
-      f.marked = f.felt > params_.confirm_ratio * f.reference;
+      const double held = std::min(w.indentation, cap_);
+      if (held > 0.0) f.felt = force_.norm() / held;
+      const auto k = std::min(kDepthGrid - 1, static_cast<int>(held / (f.thickness * kDepthStep) + 1e-9));
+      if (k >= 1) f.reference = neighbourhood_median(f.body, f.top, k, spots_.size());
+      f.marked = f.reference > 0.0 && f.felt > params_.confirm_ratio * f.reference;
       break;
     }
     case Action::MarkFinding: {
@@ -362,14 +494,14 @@ void ScriptedTrainee::complete(const Waypoint& w, double t) noexcept {
   if (!detour_.empty() && next_detour_ < detour_.size()) in_detour_ = true;
 }
 
-double ScriptedTrainee::neighbourhood_median(std::size_t i) noexcept {
+double ScriptedTrainee::neighbourhood_median(std::size_t body, const Vec3& top, int k, std::size_t exclude) noexcept {
   scratch_.clear();
-  const Spot& s = spots_[i];
   const double r2 = params_.neighbourhood * params_.neighbourhood;
   for (std::size_t j = 0; j < spots_.size(); ++j) {
     const Spot& o = spots_[j];
-    if (j == i || o.body != s.body || stiffness_[j] <= 0.0 || o.thickness < params_.min_thickness) continue;
-    if ((o.top - s.top).squaredNorm() < r2) scratch_.push_back(stiffness_[j]);
+    if (j == exclude || o.body != body || o.thickness < params_.min_thickness) continue;
+    const double kj = stiffness_at(j, k);
+    if (kj > 0.0 && (o.top - top).squaredNorm() < r2) scratch_.push_back(kj);
   }
   if (scratch_.size() < 3) return 0.0;
   const auto mid = scratch_.begin() + static_cast<std::ptrdiff_t>(scratch_.size() / 2);
@@ -385,9 +517,13 @@ void ScriptedTrainee::judge_strip(int strip, bool provisional) noexcept {
     suspicious_[i] = kPlain;
     ratio_[i] = 0.0;
     if (stiffness_[i] <= 0.0 || spots_[i].thickness < params_.min_thickness) continue;
-    const double median = neighbourhood_median(i);
+    // Stiffness at the deepest depth this press reached, against the neighbours' at
+    // the same depth.
+    const int k = deepest_grid(i);
+    if (k < 1) continue;
+    const double median = neighbourhood_median(spots_[i].body, spots_[i].top, k, i);
     if (median <= 0.0) continue;
-    ratio_[i] = stiffness_[i] / median;
+    ratio_[i] = stiffness_at(i, k) / median;
     if (ratio_[i] > params_.suspicion_ratio) suspicious_[i] = provisional ? kMayJoin : kSuspicious;
   }
 }
@@ -416,19 +552,18 @@ void ScriptedTrainee::find_groups(std::size_t at) noexcept {
       }
     }
     // The stiffness-weighted centroid (by how much stiffer each spot felt).
-    double w = 0.0, u = 0.0, v = 0.0, reference = 0.0;
+    double w = 0.0, u = 0.0, v = 0.0, searched = 0.0;
     for (int g : group_) {
       const auto i = static_cast<std::size_t>(g);
+      searched = std::max(searched, pressed_force_[i]);
       const double wi = ratio_[i] - 1.0;
       w += wi;
       u += wi * spots_[i].u;
       v += wi * spots_[i].v;
-      reference += wi * stiffness_[i] / ratio_[i];
     }
     const std::size_t body = spots_[seed].body;
     u /= w;
     v /= w;
-    reference /= w;
     const auto f = frame_at(scene_->body(body).body, u, v);
     // A finding next to an earlier one is the same mass felt again from the next strip.
     bool known = false;
@@ -439,21 +574,23 @@ void ScriptedTrainee::find_groups(std::size_t at) noexcept {
       continue;
     }
     const int index = static_cast<int>(findings_.size());
-    findings_.push_back({body, u, v, f.top, reference, 0.0, false});
+    findings_.push_back({body, u, v, f.top, 2.0 * f.radius, 0.0, 0.0, false});
 
-    // Re-palpate the finding's centre a little harder than the deep press, and mark it
-    // on the surface if it is still clearly stiffer than its surroundings.
+    // Re-palpate the finding's centre a little harder than the search presses there
+    // (deeper, and up to repalpate_factor times the force they felt, never over the
+    // limit), and mark it on the surface if it is still clearly stiffer than its
+    // surroundings.
     add_glide(detour_, cbody, cu, cv, body, u, v, cursor);
     const double v_press = params_.press_speed;
     const double depth = params_.levels[static_cast<std::size_t>(params_.level_count - 1)] *
                          params_.repalpate_factor * 2.0 * f.radius;
-    const Vec3 pressed = f.top - depth * f.normal;
-    detour_.push_back({f.top, params_.lift / v_press, Action::None, -1, 0.0});
-    detour_.push_back({pressed, depth / v_press, Action::None, -1, 0.0});
-    detour_.push_back({pressed, params_.hold, Action::Repalpate, index, depth});
-    detour_.push_back({f.top, depth / v_press, Action::MarkFinding, index, 0.0});
+    const double limit = std::min(params_.force_limit, params_.repalpate_factor * searched);
+    detour_.push_back(press_to(f.top, f.normal, 0.0, params_.lift / v_press, limit));
+    detour_.push_back(press_to(f.top, f.normal, depth, depth / v_press, limit));
+    detour_.push_back(press_to(f.top, f.normal, depth, params_.hold, limit, Action::Repalpate, index));
+    detour_.push_back(press_to(f.top, f.normal, 0.0, depth / v_press, limit, Action::MarkFinding, index));
     cursor = f.top + params_.lift * f.normal;
-    detour_.push_back({cursor, params_.lift / v_press, Action::None, -1, 0.0});
+    detour_.push_back({cursor, params_.lift / v_press, Action::None, -1});
     cu = u;
     cv = v;
     cbody = body;
@@ -490,9 +627,9 @@ void ScriptedTrainee::add_false_marks() noexcept {
       if (!clear || !detour_room(kMaxTransitPoints + 4)) continue;
       group_.push_back(static_cast<int>(i));
       add_glide(detour_, cbody, cu, cv, s.body, s.u, s.v, cursor);
-      detour_.push_back({s.top, params_.lift / params_.press_speed, Action::MarkFalse, static_cast<int>(i), 0.0});
+      detour_.push_back({s.top, params_.lift / params_.press_speed, Action::MarkFalse, static_cast<int>(i)});
       cursor = s.top + params_.lift * s.normal;
-      detour_.push_back({cursor, params_.lift / params_.press_speed, Action::None, -1, 0.0});
+      detour_.push_back({cursor, params_.lift / params_.press_speed, Action::None, -1});
       cu = s.u;
       cv = s.v;
       cbody = s.body;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace palpa::score::detail {
@@ -20,6 +21,7 @@ struct Segment {
   double angle;  // axial direction in the body's top-down view, [0, pi)
   double length; // m over the top contour
   double x, y;   // midpoint in the top-down view (m)
+  Vec3 mid;      // midpoint on the top contour (m)
 };
 
 double axial_difference(double a, double b) {
@@ -41,16 +43,20 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
       return std::array<double, 2>{m.x(), m.y()};
     };
     std::array<double, 2> last = view(path[begin].top);
+    Vec3 last_top = path[begin].top;
     double since = 0.0;  // m of path since the last resampled point
-    auto emit = [&](const std::array<double, 2>& m, double length) {
+    auto emit = [&](const Vec3& top, double length) {
+      const std::array<double, 2> m = view(top);
       const double dx = m[0] - last[0];
       const double dy = m[1] - last[1];
       if (dx == 0.0 && dy == 0.0) return;
       double angle = std::atan2(dy, dx);
       if (angle < 0) angle += kPi;
       if (angle >= kPi) angle -= kPi;
-      out.push_back({path[begin].body, path[begin].piece, angle, length, 0.5 * (m[0] + last[0]), 0.5 * (m[1] + last[1])});
+      out.push_back({path[begin].body, path[begin].piece, angle, length, 0.5 * (m[0] + last[0]),
+                     0.5 * (m[1] + last[1]), 0.5 * (top + last_top)});
       last = m;
+      last_top = top;
     };
     for (std::size_t k = begin + 1; k < end; ++k) {
       const PathPoint& a = path[k - 1];
@@ -60,12 +66,12 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
       while (since + (seg - done) >= kResample) {
         done += kResample - since;
         const double s = seg > 0 ? done / seg : 1.0;
-        emit(view(a.top + s * (b.top - a.top)), kResample);
+        emit(a.top + s * (b.top - a.top), kResample);
         since = 0.0;
       }
       since += seg - done;
     }
-    if (since > 0.0) emit(view(path[end - 1].top), since);
+    if (since > 0.0) emit(path[end - 1].top, since);
     begin = end;
   }
   return out;
@@ -127,13 +133,20 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     if (axial_difference(s.angle, axis) <= kAxisTolerance) along += s.length;
   out.strip_fraction = along / total;
 
-  // Strips: straight runs along the axis at least kLongRun long; their positions across it.
-  std::vector<std::vector<double>> positions(grids.size());
+  // Strips: straight runs along the axis at least kLongRun long, ordered by their position
+  // across it in the top-down view; each keeps its points on the top contour.
+  struct Run {
+    double position;
+    std::vector<Vec3> points;
+  };
+  std::vector<std::vector<Run>> runs(grids.size());
   const double nx = -std::sin(axis), ny = std::cos(axis);
   double run_length = 0.0, run_moment = 0.0;
+  std::vector<Vec3> run_points;
   auto close_run = [&](int body) {
-    if (run_length >= kLongRun) positions[static_cast<std::size_t>(body)].push_back(run_moment / run_length);
+    if (run_length >= kLongRun) runs[static_cast<std::size_t>(body)].push_back({run_moment / run_length, run_points});
     run_length = run_moment = 0.0;
+    run_points.clear();
   };
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const Segment& s = segments[k];
@@ -141,31 +154,37 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     if (axial_difference(s.angle, axis) <= kAxisTolerance) {
       run_length += s.length;
       run_moment += s.length * (nx * s.x + ny * s.y);
+      run_points.push_back(s.mid);
     } else {
       close_run(s.body);
     }
   }
   if (!segments.empty()) close_run(segments.back().body);
 
-  // Neighbouring strips: positions closer than half a pad are one strip passed twice.
+  // Neighbouring strips: positions closer than half a pad are one strip passed twice. The
+  // gap between two strips is measured on the skin, not in the top-down view (which
+  // shortens it on a dome's slopes): the median over one strip's points of the distance to
+  // the nearest point of the next.
   std::vector<double> gaps;
-  for (auto& p : positions) {
-    std::sort(p.begin(), p.end());
-    std::vector<double> strips;
-    std::size_t count = 0;
-    double sum = 0.0, last = 0.0;
-    for (double x : p) {
-      if (count > 0 && x - last > 0.5 * pad_radius) {
-        strips.push_back(sum / double(count));
-        count = 0;
-        sum = 0.0;
-      }
-      sum += x;
-      ++count;
-      last = x;
+  for (auto& body_runs : runs) {
+    std::sort(body_runs.begin(), body_runs.end(), [](const Run& a, const Run& b) { return a.position < b.position; });
+    std::vector<std::vector<Vec3>> strips;
+    double last = 0.0;
+    for (std::size_t k = 0; k < body_runs.size(); ++k) {
+      if (k == 0 || body_runs[k].position - last > 0.5 * pad_radius) strips.emplace_back();
+      strips.back().insert(strips.back().end(), body_runs[k].points.begin(), body_runs[k].points.end());
+      last = body_runs[k].position;
     }
-    if (count > 0) strips.push_back(sum / double(count));
-    for (std::size_t k = 1; k < strips.size(); ++k) gaps.push_back(strips[k] - strips[k - 1]);
+    for (std::size_t k = 1; k < strips.size(); ++k) {
+      std::vector<double> nearest;
+      nearest.reserve(strips[k - 1].size());
+      for (const Vec3& p : strips[k - 1]) {
+        double closest = std::numeric_limits<double>::infinity();
+        for (const Vec3& q : strips[k]) closest = std::min(closest, (p - q).squaredNorm());
+        nearest.push_back(std::sqrt(closest));
+      }
+      gaps.push_back(median(std::move(nearest)));
+    }
   }
   out.strip_spacing_mm = 1000.0 * median(gaps);
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 // A scripted trainee: a Device that plans and performs a palpation exam on the top contour
-// of a scene's bodies (vertical strips, a press cycle at each spot) and finds tumours only
+// of a scene's bodies (vertical strips, a press cycle at each spot, sliding from spot to
+// spot in contact along a strip) and finds tumours only
 // from the force it feels through write_force(), as a person would: it never sees the
 // case's ground truth. Three styles reproduce the exams the scorer must tell apart
 // (research notes, palpation.md): a thorough expert (MammaCare vertical strips, three
@@ -46,14 +47,23 @@ struct StyleParameters {
   /// so a tumour there would hit the 30 N force cap and barely stand out.
   std::array<double, 3> levels{0.10, 0.30, 0.50};
   int level_count = 3;
-  double lift = 0.004;           ///< m, above the surface between spots
+  /// N: a press stops going deeper when the felt |F| reaches this and holds the
+  /// indentation reached (closed loop on the force felt), as a real examiner limits force.
+  double force_limit = 15.0;
+  /// Keep contact along a strip (MammaCare: the pads slide along the strip without
+  /// lifting): between spots of one strip, slide at `slide_level`; lift only between strips.
+  bool slide = true;
+  double slide_level = 0.10;     ///< fraction of the local thickness while sliding
+  double lift = 0.004;           ///< m, above the surface between strips (every spot when not sliding)
   double move_speed = 0.07;      ///< m/s, gliding between spots
   double press_speed = 0.2;      ///< m/s, pressing in and releasing
   double hold = 0.04;            ///< s, held at each level before the force is read
   double neighbourhood = 0.025;  ///< m, spots compared with one another
   double suspicion_ratio = 1.3;  ///< stiffer than the neighbourhood's median by this: suspicious
   double group_distance = 0.02;  ///< m, suspicious spots closer than this are one finding
-  double repalpate_factor = 1.15;  ///< press harder by this when re-palpating a finding
+  /// Re-palpating a finding presses this much deeper than the deep level and up to this
+  /// much more force than the search presses there felt, never over force_limit.
+  double repalpate_factor = 1.15;
   double confirm_ratio = 1.2;    ///< a re-palpation this much stiffer than the neighbourhood: mark
   double min_thickness = 0.004;  ///< m: thinner tissue holds no palpable mass; not judged
   int false_marks_min = 0;       ///< marks this many to ...
@@ -103,8 +113,14 @@ class ScriptedTrainee final : public engine::Device {
   const StyleParameters& parameters() const { return params_; }
   const std::vector<Spot>& spots() const { return spots_; }
   /// Effective stiffness |F| / indentation measured at each spot's deepest press (N/m),
-  /// 0 until pressed.
+  /// 0 until pressed; the indentation is the one actually held (force-limited presses
+  /// hold less than planned).
   const std::vector<double>& measured_stiffness() const { return stiffness_; }
+  /// The indentation held at each spot's deepest press (m) and |F| felt there (N); 0 until pressed.
+  const std::vector<double>& held_indentation() const { return held_; }
+  const std::vector<double>& pressed_force() const { return pressed_force_; }
+  /// When each spot's deepest press was judged (s); -1 until pressed.
+  const std::vector<double>& measure_times() const { return measure_time_; }
   /// The deepest planned indentation as a fraction of the local thickness.
   double max_depth_fraction() const;
   const Vec3& last_force() const { return force_; }
@@ -112,34 +128,60 @@ class ScriptedTrainee final : public engine::Device {
  private:
   enum class Action : std::uint8_t { None, Measure, StripEnd, Repalpate, MarkFinding, MarkFalse, End };
   struct Waypoint {
-    Vec3 position = Vec3::Zero();
+    Vec3 position = Vec3::Zero();  ///< as planned; a press may hold shallower
     double duration = 0.0;  ///< s, from the previous waypoint
     Action action = Action::None;
     int index = -1;  ///< spot, strip or finding
+    /// A press: `position` lies `indentation` (m) below the pressed top-contour point along
+    /// `normal`, and the indentation is capped where |F| reached `force_limit`.
+    bool press = false;
     double indentation = 0.0;
+    Vec3 normal = Vec3::Zero();
+    double force_limit = 0.0;  ///< N
+    int spot = -1;             ///< the search spot pressed (its force-depth curve is recorded)
   };
   struct Finding {
     std::size_t body = 0;
     double u = 0.0, v = 0.0;
     Vec3 top = Vec3::Zero();
-    double reference = 0.0;  ///< N/m: the neighbourhood's median stiffness
+    double thickness = 0.0;  ///< m, 2R
+    double reference = 0.0;  ///< N/m: the neighbourhood's median stiffness at the re-palpation's depth
     double felt = 0.0;       ///< N/m: measured at the re-palpation
     bool marked = false;
   };
 
   void plan(const std::vector<ExamRect>& region);
   void plan_rect(const ExamRect& rect, int& strip);
-  void add_press(std::vector<Waypoint>& out, const Spot& spot, int spot_index, const Vec3& from, bool measure) const;
+  /// A press waypoint at `spot` (top, normal) pressed `indentation` deep.
+  static Waypoint press_to(const Vec3& top, const Vec3& normal, double indentation, double duration,
+                           double force_limit, Action action = Action::None, int index = -1);
+  /// The press cycle at a spot from `from_depth` (m below its top, 0: touching) through the
+  /// levels, ending `to_depth` deep.
+  void add_press(std::vector<Waypoint>& out, const Spot& spot, int spot_index, double from_depth,
+                 double to_depth) const;
+  /// In contact from one spot of a strip to the next, at the slide level.
+  void add_slide(std::vector<Waypoint>& out, const Spot& from, const Spot& to) const;
   void add_transit(std::vector<Waypoint>& out, std::size_t body, double u0, double v0, double u1, double v1,
                    const Vec3& from) const;
   /// A glide from a spot to another, lifted; over the bodies when it changes body.
   void add_glide(std::vector<Waypoint>& out, std::size_t from_body, double u0, double v0, std::size_t to_body,
                  double u1, double v1, const Vec3& from) const;
+  /// Where the probe goes for `w`: a press's position with the indentation capped.
+  Vec3 target_of(const Waypoint& w) const noexcept;
+  /// The force loop of a press: caps the indentation where |F| reached the limit, and
+  /// records the search spot's force-depth curve.
+  void regulate(const Waypoint& w) noexcept;
+  /// The spot's stiffness |F| / indentation at depth grid point k, 0 when not reached.
+  double stiffness_at(std::size_t spot, int k) const noexcept;
+  /// The median stiffness at grid point k of the spots around `top` on `body` (not
+  /// `exclude`), 0 with fewer than three.
+  double neighbourhood_median(std::size_t body, const Vec3& top, int k, std::size_t exclude) noexcept;
+  /// The deepest depth grid point a spot's press reached, -1 for none.
+  int deepest_grid(std::size_t spot) const noexcept;
   void complete(const Waypoint& w, double t) noexcept;
   void judge_strip(int strip, bool provisional) noexcept;
   void find_groups(std::size_t at) noexcept;
   void add_false_marks() noexcept;
-  double neighbourhood_median(std::size_t spot) noexcept;
   void push_mark(double t, const Vec3& position) noexcept;
   bool detour_room(std::size_t waypoints) const { return detour_.size() + waypoints <= detour_.capacity(); }
 
@@ -165,8 +207,22 @@ class ScriptedTrainee final : public engine::Device {
   bool finished_ = false;
   double finish_time_ = 0.0;
   Vec3 force_ = Vec3::Zero();
+  Vec3 last_pose_ = Vec3::Zero();  ///< the position last commanded (what force_ was felt at)
+  double previous_felt_ = 0.0;     ///< N, |F| felt the tick before
+  double cap_ = 0.0;  ///< m, the current press's indentation cap (infinite until |F| reaches the limit)
 
   std::vector<double> stiffness_;
+  std::vector<double> held_;
+  std::vector<double> pressed_force_;
+  std::vector<double> measure_time_;
+  // Each search press's force-depth curve: |F| at depth fractions k * kDepthStep of the
+  // local thickness (0: not reached), so spots are compared at the same depth (a
+  // force-limited press over a mass holds shallower than its neighbours).
+  static constexpr int kDepthGrid = 16;
+  static constexpr double kDepthStep = 0.05;
+  std::vector<double> curve_;
+  int curve_spot_ = -1;
+  double curve_fraction_ = 0.0, curve_force_ = 0.0;  ///< last point fed
   std::vector<double> ratio_;       ///< stiffness / neighbourhood median; 0 until judged
   // Per spot: nothing felt, suspicious, suspicious on a provisional judgement (may join a
   // finding, cannot start one), taken into a finding.
