@@ -14,8 +14,6 @@
 #include "palpa/exercise/tumour_placement.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
-#include "palpa/score/score.hpp"
-#include "palpa/session/session_reader.hpp"
 #include "palpa/session/session_writer.hpp"
 
 namespace palpa::cli {
@@ -28,6 +26,7 @@ struct ExerciseCliOptions {
   std::optional<std::uint64_t> seed;
   std::string out_path;
   bool json = false;
+  std::string report_dir;
 };
 
 /// A seed nobody chose: every attempt meets its tumours somewhere new, and the session
@@ -81,20 +80,9 @@ int run_exercise_command(const ExerciseCliOptions& o) {
                static_cast<unsigned long long>(summary.ticks), static_cast<long long>(summary.marks),
                o.out_path.c_str());
 
-  // Score what was recorded, read back from the file: the same path `palpa-cli score` takes.
-  try {
-    const auto recorded = session::read_session(o.out_path);
-    const auto score = score::score_session(recorded, o.out_path);
-    if (o.json) {
-      std::printf("%s\n", score::to_json(score).dump(2).c_str());
-    } else {
-      std::printf("%s", score::summary_text(score).c_str());
-    }
-  } catch (const session::SessionError& e) {
-    print_error(e.what());
-    return kFailure;
-  }
-  return kOk;
+  // Score what was recorded, read back from the file: exactly what `palpa-cli score` does.
+  const int scored = score_and_report(o.out_path, o.json, o.report_dir);
+  return scored == kBadInput ? kFailure : scored;  // the session we just wrote must read back
 }
 
 }  // namespace
@@ -120,7 +108,10 @@ Command add_exercise_command(CLI::App& parent) {
       ->check(CLI::NonNegativeNumber);
   app->add_option("--out", o->out_path, "session file to create (never overwritten; suggested extension .palpa)")
       ->required();
-  app->add_flag("--json", o->json, "print the score as JSON instead of the score card");
+  app->add_flag("--json", o->json, "print the score report as JSON instead of the score card");
+  app->add_option("--report", o->report_dir,
+                  "also write the session's report into this folder: STEM.html (maps and force plot), STEM.json, "
+                  "STEM.xapi.json, STEM.csv");
   return {app, [o] { return run_exercise_command(*o); }};
 }
 

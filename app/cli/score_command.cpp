@@ -22,8 +22,11 @@ struct ScoreOptions {
   std::string report_dir;
 };
 
-int run_score(const ScoreOptions& o) {
-  const std::filesystem::path path(o.session);
+int run_score(const ScoreOptions& o) { return score_and_report(o.session, o.json, o.report_dir); }
+
+}  // namespace
+
+int score_and_report(const std::filesystem::path& path, bool json, const std::string& report_dir) {
   session::Session session;
   score::Score score;
   try {
@@ -34,28 +37,26 @@ int run_score(const ScoreOptions& o) {
     return kBadInput;
   }
   const auto header = report::header_of(session.info, path);
-  if (o.json) {
+  if (json) {
     std::printf("%s\n", report::report_json(header, score).dump(2).c_str());
   } else {
     std::fputs(score::summary_text(score).c_str(), stdout);
   }
   std::fflush(stdout);
-  if (!o.report_dir.empty()) {
+  if (!report_dir.empty()) {
     try {
-      report::write_session_report(o.report_dir, path.stem().string(), header, session, score);
+      report::write_session_report(report_dir, path.stem().string(), header, session, score);
     } catch (const std::exception& e) {
       print_error(e.what());
       return kFailure;
     }
-    if (!o.json) {
-      const auto stem = (std::filesystem::path(o.report_dir) / path.stem()).string();
+    if (!json) {
+      const auto stem = (std::filesystem::path(report_dir) / path.stem()).string();
       std::printf("report: %s.html (.json, .xapi.json, .csv)\n", stem.c_str());
     }
   }
   return kOk;
 }
-
-}  // namespace
 
 Command add_score_command(CLI::App& parent) {
   auto o = std::make_shared<ScoreOptions>();

@@ -149,6 +149,19 @@ class Exercise(unittest.TestCase):
         self.assertIn("FAIL", res.stdout)
         self.assertIn("seed 1", res.stderr)
 
+    def test_report_folder_gets_the_session_report(self):
+        out = os.path.join(self.tmp.name, "reported.palpa")
+        folder = os.path.join(self.tmp.name, "reports")
+        res = run(["exercise", self.case, "--trainee", "r", "--style", "light", "--seed", "2", "--out", out,
+                   "--report", folder])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        for suffix in (".html", ".json", ".xapi.json", ".csv"):
+            self.assertTrue(os.path.getsize(os.path.join(folder, "reported" + suffix)) > 0, suffix)
+        with open(os.path.join(folder, "reported.html")) as fh:
+            self.assertEqual(fh.read().count("data:image/png;base64,"), 3)
+        with open(os.path.join(folder, "reported.xapi.json")) as fh:
+            self.assertTrue(json.load(fh)["verb"]["id"].endswith("/failed"))
+
     def test_existing_session_is_never_overwritten(self):
         _, out = self.results["expert"]
         before = os.path.getsize(out), os.path.getmtime(out)
@@ -181,7 +194,7 @@ class Exercise(unittest.TestCase):
     def test_help(self):
         res = run(["exercise", "--help"])
         self.assertEqual(res.returncode, 0)
-        for option in ("--trainee", "--style", "--seed", "--out", "--json"):
+        for option in ("--trainee", "--style", "--seed", "--out", "--json", "--report"):
             self.assertIn(option, res.stdout)
 
 
