@@ -12,3 +12,5 @@ gtest_discover_tests(exercise_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 # palpa-cli exercise end to end: styles, the session file, determinism, refusals.
 add_test(NAME cli.exercise COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_exercise_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR})
+add_test(NAME data.sample_sessions COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_sample_sessions.py
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR})
