@@ -288,8 +288,12 @@ Expected expected_contact(const MatBody& body, double u, double v, const Vec3& q
   const double d = (q - e.p).norm();
   e.depth = e.radius - d;
   const Vec3 n = sk_normal(body.skeleton(), u, v);
-  e.outward = d > 0.0 ? Vec3((q - e.p) / d) : n;
   e.side = (q - e.p).dot(n) >= 0.0 ? 1 : -1;
+  // At an interior foot point Q - P is parallel to N (the foot point's first-order
+  // condition), so the outward direction is +-N exactly; (Q - P) / |Q - P| at a computed
+  // foot point carries the search's round-off, which near the skeleton is no direction.
+  const bool interior = u > 0.0 && u < 1.0 && v > 0.0 && v < 1.0;
+  e.outward = interior ? Vec3(e.side * n) : (d > 0.0 ? Vec3((q - e.p) / d) : n);
   return e;
 }
 

@@ -19,13 +19,37 @@ Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3
   const Vec3 n = foot.su.cross(foot.sv);
   const Vec3 d = q - foot.point;
   const double len = d.norm();
+  // At a foot point Q - P is orthogonal to every free direction of the skeleton (a
+  // parameter strictly inside (0, 1)), so any part of it along one is round-off of the
+  // foot-point search (Newton stops within 1e-13 in u, v: about 1e-15 m). It does not
+  // matter far from the skeleton, but a probe pressed onto the skeleton itself is only
+  // femtometres from P and there (Q - P) / |Q - P| would point wherever the round-off
+  // does: sideways, flinging the normal spring, the shear springs' rest point and the
+  // tumours' columns about by tens of newtons between ticks at a probe held still. So
+  // the direction is taken from Q - P with those parts removed: +-N inside the grid, and
+  // in the plane of N and the outward edge direction where a parameter sits on the
+  // boundary (the rim), where that part is the real geometry.
+  Vec3 w = d;
+  const auto drop = [&w](const Vec3& tangent) {
+    const double tt = tangent.squaredNorm();
+    if (tt > 0.0) w -= (w.dot(tangent) / tt) * tangent;
+  };
+  const bool free_u = foot.u > 0.0 && foot.u < 1.0;
+  const bool free_v = foot.v > 0.0 && foot.v < 1.0;
+  const double nn = n.norm();
+  if (free_u && free_v && nn > 0.0) {
+    w = (d.dot(n) / (nn * nn)) * n;  // both tangents at once: exact even where Su, Sv are skewed
+  } else {
+    if (free_u) drop(foot.su);
+    if (free_v) drop(foot.sv);
+  }
+  const double wlen = w.norm();
   // Within round-off of the skeleton the direction of Q - P is noise: use the normal.
   const double on_skeleton = 64.0 * std::numeric_limits<double>::epsilon() * std::max(q.norm(), foot.point.norm());
-  if (len > on_skeleton) {
-    c.outward = d / len;
-    c.side = d.dot(n) >= 0.0 ? 1 : -1;
+  if (wlen > on_skeleton) {
+    c.outward = w / wlen;
+    c.side = w.dot(n) >= 0.0 ? 1 : -1;
   } else {
-    const double nn = n.norm();
     c.outward = nn > 0.0 ? Vec3(n / nn) : Vec3::UnitZ();
     c.side = 1;
   }

@@ -15,7 +15,9 @@ struct Contact {
   double radius = 0.0;     ///< R(u, v), m (a dip below 0 next to the boundary reads as 0)
   double stiffness = 0.0;  ///< k(u, v), N/m (clamped at 0)
   /// Unit direction from the foot point towards the probe, (Q - P)/|Q - P|: the way out of
-  /// the body. On the skeleton itself (|PQ| = 0) it is the skeleton normal N (top side).
+  /// the body. The foot point's round-off along free tangents is removed first, so at an
+  /// interior foot point it is exactly +-N (docs/model.md, section 2). On the skeleton
+  /// itself (|PQ| at round-off) it is the skeleton normal N (top side).
   Vec3 outward = Vec3::UnitZ();
   /// +1 when the probe is on the top (+N) side of the skeleton, -1 on the bottom side.
   int side = 1;
