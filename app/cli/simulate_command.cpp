@@ -1,6 +1,8 @@
-// palpa-cli simulate CASE --trajectory TRAJ.csv --out PATH: drives the haptic engine with a
-// scripted probe and writes one CSV row per haptic tick.
+// palpa-cli simulate CASE --trajectory TRAJ.csv --out PATH [--session S.palpa]: drives the
+// haptic engine with a scripted probe and writes one CSV row per haptic tick, and/or records
+// the run as a session (marks become Mark events) that palpa-cli score can score.
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -14,6 +16,9 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/csv.hpp"
 #include "palpa/io/json_text.hpp"
+#include "palpa/exercise/exercise.hpp"
+#include "palpa/session/session_writer.hpp"
+#include "palpa/version.hpp"
 #include "simulate_output.hpp"
 
 namespace palpa::cli {
@@ -24,6 +29,8 @@ struct SimulateOptions {
   std::string trajectory_path;
   std::string marks_path;
   std::string out_path;
+  std::string session_path;
+  std::string trainee = "simulate";
   double rate = 1000.0;
   bool fast = false;
   bool realtime = false;
@@ -57,9 +64,15 @@ bool read_timed_points(const std::string& path, bool strictly_increasing, engine
 }
 
 int run_simulate(const SimulateOptions& o) {
+  if (o.out_path.empty() && o.session_path.empty()) {
+    print_error("simulate: --out or --session is required (see palpa-cli simulate --help)");
+    return kBadInput;
+  }
   std::unique_ptr<scene::Scene> scene;
+  io::CaseFile case_file;
   try {
-    scene = std::make_unique<scene::Scene>(scene::Scene::build(io::load_case(o.case_path), o.case_path));
+    case_file = io::load_case(o.case_path);
+    scene = std::make_unique<scene::Scene>(scene::Scene::build(case_file, o.case_path));
   } catch (const io::CaseError& e) {
     for (const auto& line : e.lines()) print_error(line);
     return kBadInput;
@@ -76,14 +89,57 @@ int run_simulate(const SimulateOptions& o) {
   engine::ScriptedDevice device(trajectory);
   engine::Engine eng(*scene, device, options);
 
-  SampleCsvWriter writer(o.out_path);
-  if (!writer.ok()) {
-    print_error(o.out_path + ": cannot write");
-    return kFailure;
+  std::unique_ptr<SampleCsvWriter> writer;
+  if (!o.out_path.empty()) {
+    writer = std::make_unique<SampleCsvWriter>(o.out_path);
+    if (!writer->ok()) {
+      print_error(o.out_path + ": cannot write");
+      return kFailure;
+    }
   }
+  std::unique_ptr<session::SessionWriter> recording;
+  if (!o.session_path.empty()) {
+    session::SessionInfo info;
+    info.trainee = o.trainee;
+    info.device = device.capabilities().name;
+    info.software_version = palpa::kVersion;
+    info.started_at = exercise::iso8601_utc_now();
+    info.rate_hz = o.rate;
+    info.case_source = o.case_path;
+    info.case_document = io::to_json(case_file);
+    info.extra = {{"recorded_by", "palpa-cli simulate"}, {"trajectory", o.trajectory_path}};
+    try {
+      recording = std::make_unique<session::SessionWriter>(o.session_path, info);
+      session::Event start;
+      start.kind = session::EventKind::Start;
+      recording->event(start);
+    } catch (const session::SessionError& e) {
+      print_error(e.what());
+      return e.where() == "file" ? kBadInput : kFailure;
+    }
+  }
+  // The trainee's marks become Mark events at their times, in order, between the ticks.
+  std::size_t next_mark = 0;
+  const auto record_marks_until = [&](double t) {
+    for (; next_mark < marks.t.size() && marks.t[next_mark] <= t; ++next_mark) {
+      session::Event mark;
+      mark.kind = session::EventKind::Mark;
+      mark.t = marks.t[next_mark];
+      mark.mark = static_cast<std::int64_t>(next_mark + 1);
+      mark.position = {marks.position[next_mark].x(), marks.position[next_mark].y(), marks.position[next_mark].z()};
+      recording->event(mark);
+    }
+  };
+  double last_t = 0.0;
   std::uint64_t ticks = 0;
   const auto write = [&](const engine::Sample& s) {
-    writer.write(s, scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
+    if (writer) writer->write(s, scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
+    if (recording) {
+      record_marks_until(s.t);
+      recording->append(s);
+      if (ticks % 250 == 249) recording->commit();
+    }
+    last_t = s.t;
     ++ticks;
   };
   if (o.realtime) {
@@ -107,16 +163,26 @@ int run_simulate(const SimulateOptions& o) {
   } else {
     engine::run_fast(eng, trajectory.duration(), write);
   }
-  if (!writer.close()) {
+  if (writer && !writer->close()) {
     print_error(o.out_path + ": write failed (disk full?)");
     return kFailure;
   }
-  if (!marks.t.empty() && !write_marks_csv(o.out_path + ".marks.csv", marks)) {
+  if (writer && !marks.t.empty() && !write_marks_csv(o.out_path + ".marks.csv", marks)) {
     print_error(o.out_path + ".marks.csv: cannot write");
     return kFailure;
   }
+  if (recording) {
+    record_marks_until(std::numeric_limits<double>::infinity());  // marks placed after the last tick
+    session::Event end;
+    end.kind = session::EventKind::End;
+    end.t = last_t;
+    end.note = "trajectory ended";
+    recording->event(end);
+    recording->finish();
+  }
   std::fprintf(stderr, "simulate: %llu ticks at %.0f Hz (%.3f s of trajectory) written to %s\n",
-               static_cast<unsigned long long>(ticks), o.rate, trajectory.duration(), o.out_path.c_str());
+               static_cast<unsigned long long>(ticks), o.rate, trajectory.duration(),
+               (o.out_path.empty() ? o.session_path : o.out_path).c_str());
   return kOk;
 }
 
@@ -127,11 +193,16 @@ Command add_simulate_command(CLI::App& parent) {
   auto* app = parent.add_subcommand(
       "simulate", "Drive the haptic engine with a scripted probe (TRAJ.csv: header t,x,y,z in s and m, linear in "
                   "between) and write one CSV row per tick to --out: "
-                  "t,x,y,z,fx,fy,fz,body,u,v,depth,buttons,overrun,fault (the session file replaces it once "
-                  "sessions exist). --fast (the default) is deterministic: the same inputs give the same bytes.");
+                  "t,x,y,z,fx,fy,fz,body,u,v,depth,buttons,overrun,fault, and/or record it as a session (--session). "
+                  "--fast (the default) is deterministic: the same inputs give the same bytes.");
   app->add_option("CASE", o->case_path, "case file (JSON)")->required();
   app->add_option("--trajectory", o->trajectory_path, "probe trajectory CSV: t,x,y,z")->required();
-  app->add_option("--out", o->out_path, "output CSV of samples")->required();
+  app->add_option("--out", o->out_path, "output CSV of samples");
+  app->add_option(
+      "--session", o->session_path,
+      "also (or instead of --out) record the run as a session file (docs/session-format.md): the samples, the "
+      "--marks as Mark events, the case; palpa-cli score scores it. Never overwrites a file");
+  app->add_option("--trainee", o->trainee, "trainee id recorded in the --session (default: simulate)");
   app->add_option("--rate", o->rate, "haptic rate in Hz; default 1000")->check(CLI::Range(10.0, 100000.0));
   auto* fast = app->add_flag("--fast", o->fast, "run the ticks as fast as possible, deterministically (default)");
   app->add_flag("--realtime", o->realtime,
@@ -139,7 +210,7 @@ Command add_simulate_command(CLI::App& parent) {
                 "statistics (period and compute time percentiles, missed deadlines)")
       ->excludes(fast);
   app->add_option("--marks", o->marks_path,
-                  "the trainee's tumour marks, CSV t,x,y,z; checked and copied to OUT.marks.csv until sessions exist");
+                  "the trainee's tumour marks, CSV t,x,y,z: Mark events in the --session, and copied to OUT.marks.csv");
   app->add_flag("--no-dynamics", o->no_dynamics, "released control points return to rest at once");
   app->add_flag("--no-shear", o->no_shear, "leave out the shear springs");
   return {app, [o] { return run_simulate(*o); }};

@@ -1,5 +1,5 @@
 #pragma once
-// CSV output of simulated haptic ticks (until the session file format exists).
+// CSV output of simulated haptic ticks (palpa-cli simulate --out; --session records a session file).
 #include <cstdio>
 #include <string>
 

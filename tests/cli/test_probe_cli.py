@@ -12,8 +12,10 @@ has depth r(x, y) - |z| and, without shear, force 200 * depth * (0, 0, sign z).
 import argparse
 import csv
 import io
+import json
 import math
 import os
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -192,6 +194,41 @@ class Simulate(unittest.TestCase):
         self.simulate(out, "--marks", marks)
         with open(out + ".marks.csv") as fh:
             self.assertEqual(fh.read().splitlines()[1].split(",")[0], "1.2")
+
+    def test_session_records_the_run_and_its_marks_for_scoring(self):
+        marks = os.path.join(self.tmp.name, "marks.csv")
+        with open(marks, "w") as fh:  # one mark over the tumour, one far from it
+            fh.write("t,x,y,z\n1.2,0.0245,0.02,0.046\n1.5,-0.05,-0.05,0.02\n")
+        csv_out = os.path.join(self.tmp.name, "s.csv")
+        session = os.path.join(self.tmp.name, "s.palpa")
+        res = run(["simulate", self.case, "--trajectory", self.traj, "--out", csv_out, "--session", session,
+                   "--marks", marks, "--trainee", "sim-1"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        db = sqlite3.connect("file:%s?mode=ro" % session, uri=True)
+        samples = db.execute("select t, x, y, z, fx, fy, fz, depth from samples order by tick").fetchall()
+        with open(csv_out) as fh:
+            rows = list(csv.DictReader(fh))
+        self.assertEqual(len(samples), len(rows))  # the same ticks, to the last digit
+        for (t, x, y, z, fx, fy, fz, depth), row in zip(samples[::97], rows[::97]):
+            self.assertEqual((t, x, y, z, fx, fy, fz), tuple(float(row[k]) for k in ("t", "x", "y", "z", "fx", "fy", "fz")))
+            self.assertEqual(depth if depth is not None else 0.0, float(row["depth"]))
+        events = db.execute("select kind, mark, t from events order by t, id").fetchall()
+        self.assertEqual([e[0] for e in events], ["start", "mark", "mark", "end"])
+        self.assertEqual((events[1][1], events[1][2]), (1, 1.2))
+        meta = dict(db.execute("select key, value from meta"))
+        self.assertEqual(meta["trainee"], "sim-1")
+        db.close()
+        scored = run(["score", session, "--json"])
+        self.assertEqual(scored.returncode, 0, scored.stderr)
+        s = json.loads(scored.stdout)
+        self.assertEqual(s["sensitivity"], 1.0)       # the mark over the tumour found it
+        self.assertEqual(s["false_positives"], 1)     # the far one did not
+        again = run(["simulate", self.case, "--trajectory", self.traj, "--session", session])
+        self.assertEqual(again.returncode, 2)         # a recorded session is never overwritten
+        self.assertIn("exists", again.stderr)
+        neither = run(["simulate", self.case, "--trajectory", self.traj])
+        self.assertEqual(neither.returncode, 2)
+        self.assertIn("--out or --session", neither.stderr)
 
     def test_bad_trajectories_are_one_line_errors(self):
         bad = os.path.join(self.tmp.name, "bad.csv")
