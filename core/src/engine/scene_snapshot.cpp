@@ -21,6 +21,9 @@ void SceneSnapshot::capture(const Engine& engine, const Sample& last, std::uint6
   probe = last.position;
   force = last.force;
   body = last.body;
+  u = last.u;
+  v = last.v;
+  depth = last.depth;
   double sum = 0.0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const auto& drawn = engine.drawn(b);

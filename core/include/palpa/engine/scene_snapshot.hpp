@@ -22,6 +22,9 @@ struct SceneSnapshot {
   std::array<double, 3> probe{};
   std::array<double, 3> force{};
   std::int32_t body = -1;
+  double u = 0.0;      ///< the contact's skeleton parameters (meaningful when body >= 0)
+  double v = 0.0;
+  double depth = 0.0;  ///< m, penetration of the contacted body (0 when none)
   std::vector<BodySnapshot> bodies;
   double checksum = 0.0;  ///< sum of all control-point values, so a torn copy would show
 

@@ -1,0 +1,43 @@
+#pragma once
+// The GUI thread's copy of the drawn bodies: contour surfaces rebuilt from the haptic
+// thread's SceneSnapshot (never from the engine's own bodies, which that thread is
+// changing) and tessellated again only for bodies whose version changed.
+#include <cstdint>
+#include <vector>
+
+#include "palpa/engine/scene_snapshot.hpp"
+#include "palpa/render/tessellation.hpp"
+#include "palpa/scene/scene.hpp"
+
+namespace palpa::trainer {
+
+class DisplayMeshes {
+ public:
+  /// Starts with every body at rest, tessellated. The scene must outlive this.
+  explicit DisplayMeshes(const scene::Scene& scene, const render::TessellationOptions& options = {});
+
+  /// Copies the control points of every body whose snapshot version differs from the last
+  /// one taken and re-tessellates it; returns how many bodies changed (changed(b) says
+  /// which). Allocation-free once the meshes have the capacity for their grids.
+  std::size_t update(const engine::SceneSnapshot& snapshot);
+
+  std::size_t size() const { return bodies_.size(); }
+  const render::Mesh& top(std::size_t body) const { return bodies_[body].top_mesh; }
+  const render::Mesh& bottom(std::size_t body) const { return bodies_[body].bottom_mesh; }
+  /// The body's meshes changed in the last update().
+  bool changed(std::size_t body) const { return bodies_[body].changed; }
+  /// The snapshot version the meshes show (0 at rest before any snapshot).
+  std::uint64_t version(std::size_t body) const { return bodies_[body].version; }
+
+ private:
+  struct Body {
+    spline::BSplineSurface top, bottom;
+    render::Mesh top_mesh, bottom_mesh;
+    std::uint64_t version = 0;
+    bool changed = false;
+  };
+  std::vector<Body> bodies_;
+  render::TessellationOptions options_;
+};
+
+}  // namespace palpa::trainer

@@ -1,0 +1,141 @@
+#pragma once
+// A trainee's live exercise, headless (the Logic under the trainee window, testable
+// without Qt or VTK): the case with its tumours placed from a seed, the scene, a virtual
+// device the pointer steers, the haptic engine on its real-time loop, and the session
+// recorder writing every tick and every mark to the session file. finish() stops it all,
+// reads the session back and scores it, exactly as `palpa-cli score` would.
+//
+// Threads: every member function belongs to one thread (the GUI's); the haptic and writer
+// threads are started by start() and stopped by finish() or the destructor.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "palpa/engine/realtime_loop.hpp"
+#include "palpa/engine/virtual_device.hpp"
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session_recorder.hpp"
+#include "palpa/session/session_writer.hpp"
+#include "palpa/trainer/display_meshes.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+namespace palpa::trainer {
+
+struct LiveOptions {
+  std::string trainee = "trainee";    ///< recorded in the session; non-empty
+  std::uint64_t seed = 0;             ///< places the tumours that have a placement rule
+  std::filesystem::path session_path; ///< created by start(); must not exist
+  std::string mode = "trainee";       ///< recorded in the session's extra metadata
+  engine::EngineOptions engine{};
+  engine::RealtimeOptions realtime{};
+  double device_settling = 0.03;      ///< s: how softly the virtual probe follows the pointer
+  double commit_interval = 0.25;      ///< s between session commits
+  render::TessellationOptions tessellation{};
+};
+
+/// Pressure level by indentation over the local tissue thickness 2R, with the case's
+/// score::Thresholds (light below light_max, deep from deep_min): the levels the score uses.
+enum class PressureLevel : std::uint8_t { None, Light, Medium, Deep };
+const char* to_string(PressureLevel level);
+
+struct ContactInfo {
+  int body = -1;             ///< contacted body, -1 when none
+  double force = 0.0;        ///< N, |F| sent to the device
+  double depth = 0.0;        ///< m, indentation
+  double thickness = 0.0;    ///< m, local tissue thickness 2R at the contact
+  double fraction = 0.0;     ///< depth / thickness
+  PressureLevel level = PressureLevel::None;
+};
+
+struct LiveMark {
+  std::int64_t id = -1;  ///< from 1, as in the session's Mark events
+  double t = 0.0;        ///< s, on the haptic clock
+  Vec3 position = Vec3::Zero();
+};
+
+class LiveExercise {
+ public:
+  /// Places the tumours (seed) and builds the scene. Throws io::CaseError naming
+  /// case_source. Nothing runs and no file is written until start().
+  LiveExercise(const io::CaseFile& file, const std::string& case_source, const LiveOptions& options);
+  /// Stops the threads; a started session that was not finished stays incomplete.
+  ~LiveExercise();
+  LiveExercise(const LiveExercise&) = delete;
+  LiveExercise& operator=(const LiveExercise&) = delete;
+
+  /// Creates the session file, starts the haptic loop and the recorder, records Start.
+  /// Returns the loop's scheduling line. Throws session::SessionError (e.g. the file exists).
+  std::string start();
+  bool started() const { return started_; }
+  bool finished() const { return finished_; }
+
+  /// Where the probe should go (m); the virtual device follows it smoothly.
+  void set_probe_target(const Vec3& target);
+  /// Takes the newest snapshot, if a new one arrived, and re-tessellates the bodies whose
+  /// version changed (meshes().changed(b)); returns true when a new snapshot arrived.
+  bool update();
+  const engine::SceneSnapshot& snapshot() const { return loop_->snapshot(); }
+  /// The drawn bodies as of the last update() (at rest before start()).
+  const DisplayMeshes& meshes() const { return meshes_; }
+  /// Picks the rest top contour under a pointer ray (see surface_pick.hpp).
+  std::optional<SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
+    return picker_.pick(origin, direction);
+  }
+  /// The contact of the last snapshot taken by update().
+  ContactInfo contact() const;
+
+  /// Marks the current probe position (a Mark event); returns the mark. Throws
+  /// std::logic_error unless started and not finished.
+  LiveMark place_mark();
+  /// Removes a standing mark (an Unmark event); false when no such mark stands.
+  bool remove_mark(std::int64_t id);
+  const std::vector<LiveMark>& marks() const { return marks_; }
+
+  /// Pause: the force ramps to zero and the time does not count (Pause/Resume events).
+  void pause(bool paused);
+  bool paused() const { return paused_; }
+
+  /// Stops the loop, finishes the session file, reads it back and scores it. Once only:
+  /// a second call throws std::logic_error. Throws session::SessionError if the file
+  /// cannot be read back.
+  score::Score finish(const std::string& note = "trainee finished");
+
+  /// Loop statistics published by the haptic thread (GUI thread only).
+  const engine::LoopStats& loop_stats() { return loop_->stats(); }
+  const std::string& device_name() const { return device_.capabilities().name; }
+  const scene::Scene& scene() const { return *scene_; }
+  const io::CaseFile& placed_case() const { return placed_; }
+  const score::Thresholds& thresholds() const { return thresholds_; }
+  const std::filesystem::path& session_path() const { return options_.session_path; }
+  std::uint64_t seed() const { return options_.seed; }
+
+ private:
+  double now() const;  ///< s on the haptic clock: the newest snapshot's t, never decreasing
+  void record(const session::Event& event);
+
+  LiveOptions options_;
+  std::string case_source_;
+  io::CaseFile placed_;
+  std::unique_ptr<scene::Scene> scene_;
+  score::Thresholds thresholds_;
+  engine::VirtualDevice device_;
+  std::unique_ptr<engine::Engine> engine_;
+  std::unique_ptr<engine::RealtimeLoop> loop_;
+  std::unique_ptr<session::SessionWriter> writer_;
+  std::unique_ptr<session::SessionRecorder> recorder_;
+  DisplayMeshes meshes_;
+  TopContourPicker picker_;
+  std::vector<LiveMark> marks_;
+  std::int64_t next_mark_ = 1;
+  mutable double last_event_t_ = 0.0;
+  bool started_ = false;
+  bool finished_ = false;
+  bool paused_ = false;
+};
+
+}  // namespace palpa::trainer
