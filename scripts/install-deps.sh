@@ -3,12 +3,14 @@
 # Idempotent: packages already installed are skipped; works as root or through sudo.
 set -euo pipefail
 
-# What the current tree builds with. Later layers (ui/, device/) add theirs here.
+# What the current tree builds with (ui/ and app/gui: Qt 5, VTK 9, Xvfb for their tests).
+# Later layers (device/) add theirs here.
 packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
+  qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
 )
 
 missing=()

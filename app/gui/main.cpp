@@ -1,0 +1,143 @@
+// palpa: the Palpa application. Trainee mode: palpate a case with the mouse, mark what you
+// find, finish for the score card. Options are parsed before any window exists, so
+// --help, --version and a bad case file answer without a display.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <QApplication>
+#include <QSurfaceFormat>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/screenshot.hpp"
+#include "palpa/ui/trainee_window.hpp"
+#include "palpa/version.hpp"
+
+namespace {
+
+enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
+
+void print_error(const std::string& message) { std::fprintf(stderr, "palpa: error: %s\n", message.c_str()); }
+
+std::string utc_stamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
+  return text;
+}
+
+std::filesystem::path default_session_path() {
+  const char* data = std::getenv("XDG_DATA_HOME");
+  const char* home = std::getenv("HOME");
+  std::filesystem::path base = data && *data ? std::filesystem::path(data)
+                               : home && *home ? std::filesystem::path(home) / ".local" / "share"
+                                               : std::filesystem::temp_directory_path();
+  return base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + ".palpa");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string case_path = PALPA_SOURCE_DIR "/data/cases/default.json";
+  std::string mode = "trainee";
+  std::string session_path;
+  std::string trainee;
+  std::optional<std::uint64_t> seed;
+  std::string screenshot;
+
+  CLI::App cli{"Palpa: find the hidden tumour by palpating a soft body with the mouse (the wheel sets how deep you "
+               "press), mark it with M, finish for your score card.",
+               "palpa"};
+  cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
+  cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
+  cli.add_option("--mode", mode, "trainee (instructor and review are planned)")->check(CLI::IsMember({"trainee"}));
+  cli.add_option("--session", session_path,
+                 "session file to record (never overwritten; default "
+                 "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa)");
+  cli.add_option("--trainee", trainee, "trainee id recorded in the session (default: $USER)");
+  cli.add_option("--seed", seed, "seed for placing the case's randomized tumours (default: a fresh one)")
+      ->check(CLI::NonNegativeNumber);
+  cli.add_option("--screenshot", screenshot,
+                 "render the window once at its default size, save this PNG and exit (no session is recorded)");
+  cli.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    print_error(std::string(e.what()) + " (see palpa --help)");
+    return kBadInput;
+  }
+
+  if (trainee.empty()) {
+    const char* user = std::getenv("USER");
+    trainee = user && *user ? user : "trainee";
+  }
+  palpa::trainer::LiveOptions options;
+  options.trainee = trainee;
+  options.mode = mode;
+  if (seed) {
+    options.seed = *seed;
+  } else {
+    std::random_device entropy;
+    options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+  }
+  options.session_path = session_path.empty() ? default_session_path() : std::filesystem::path(session_path);
+  if (screenshot.empty() && std::filesystem::exists(options.session_path)) {
+    print_error(options.session_path.string() + ": file: exists (a session is never overwritten)");
+    return kBadInput;
+  }
+
+  std::unique_ptr<palpa::trainer::LiveExercise> exercise;
+  try {
+    exercise = std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(case_path), case_path, options);
+  } catch (const palpa::io::CaseError& e) {
+    std::string line = e.what();
+    if (e.problems().size() > 1) {
+      line += " (and ";
+      line += std::to_string(e.problems().size() - 1);
+      line += " more: palpa-cli validate lists them)";
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+
+  // VTK's OpenGL needs this format on every Qt GL surface: set before QApplication exists.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("palpa");
+  QApplication::setApplicationVersion(palpa::kVersion);
+  try {
+    const QString name = QString::fromStdString(std::filesystem::path(case_path).filename().string());
+    palpa::ui::TraineeWindow window(std::move(exercise), name, screenshot.empty());
+    if (!screenshot.empty()) {
+      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
+        print_error(screenshot + ": could not write the screenshot");
+        return kFailure;
+      }
+      return kOk;
+    }
+    window.show();
+    std::fprintf(stderr, "palpa: recording the session in %s\n", window.exercise().session_path().c_str());
+    return QApplication::exec();
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+}

@@ -1,0 +1,103 @@
+#pragma once
+// The trainee exercise window: the 3D view of the case (bodies deforming under the probe,
+// drawn as a fingertip), the force gauge, the marks, Finish and the score card, and a
+// status bar with the haptic loop's health. Everything it shows comes from
+// trainer::LiveExercise; everything the trainee does goes to it.
+//
+// Mouse: the pointer picks a point on the body; the wheel (or Up/Down) sets how deep to
+// press there. Left drag turns the view, Ctrl+wheel zooms. M marks the probe position.
+#include <QElapsedTimer>
+#include <QMainWindow>
+#include <QPoint>
+#include <QTimer>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <vtkSmartPointer.h>
+
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/body_surfaces.hpp"
+
+class QLabel;
+class QListWidget;
+class QPushButton;
+class QVTKOpenGLNativeWidget;
+class vtkActor;
+class vtkGenericOpenGLRenderWindow;
+class vtkRenderer;
+
+namespace palpa::ui {
+
+class ForceGauge;
+class ScoreCard;
+
+class TraineeWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  /// Takes the exercise; starts it (session recording, haptic loop) unless `start` is false
+  /// (a screenshot needs no session). Throws what LiveExercise::start throws.
+  TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start = true,
+                QWidget* parent = nullptr);
+  ~TraineeWindow() override;
+
+  trainer::LiveExercise& exercise() { return *exercise_; }
+  QVTKOpenGLNativeWidget* view() const { return view_; }
+  ForceGauge* gauge() const { return gauge_; }
+  BodySurfaces& surfaces() { return *surfaces_; }
+  /// Where a scene point (m) appears in the view (widget pixels).
+  QPoint to_view(const trainer::Vec3& point) const;
+  /// The current press depth (m) set by the wheel or the keys.
+  double press_depth() const { return press_depth_; }
+  /// The score card, once finished.
+  ScoreCard* score_card() const { return score_card_; }
+  const std::optional<score::Score>& score() const { return score_; }
+  /// Frames drawn per second over the last second.
+  double frame_rate() const { return frame_rate_; }
+
+ public slots:
+  /// The pointer is at `pos` (view pixels): pick the body there and press at the depth set.
+  void palpate_at(const QPoint& pos);
+  void set_press_depth(double metres);
+  void place_mark();
+  void remove_selected_mark();
+  void finish();
+  /// One frame: take the newest snapshot, copy changed bodies, move the probe, redraw.
+  void frame();
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void build_scene();
+  void update_status();
+  void reveal(const score::Score& score);
+  void update_target();
+
+  std::unique_ptr<trainer::LiveExercise> exercise_;
+  QVTKOpenGLNativeWidget* view_ = nullptr;
+  ForceGauge* gauge_ = nullptr;
+  QLabel* depth_label_ = nullptr;
+  QListWidget* marks_list_ = nullptr;
+  QPushButton* remove_button_ = nullptr;
+  QPushButton* finish_button_ = nullptr;
+  QLabel* status_loop_ = nullptr;
+  QLabel* status_fps_ = nullptr;
+  ScoreCard* score_card_ = nullptr;
+  vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  std::unique_ptr<BodySurfaces> surfaces_;
+  vtkSmartPointer<vtkActor> probe_;
+  std::vector<std::pair<std::int64_t, vtkSmartPointer<vtkActor>>> mark_actors_;
+  QTimer timer_;
+  QElapsedTimer fps_clock_;
+  int frames_ = 0;
+  double frame_rate_ = 0.0;
+  double press_depth_ = 0.004;  // m
+  std::optional<trainer::SurfacePick> picked_;
+  std::optional<score::Score> score_;
+  std::string scheduling_;
+};
+
+}  // namespace palpa::ui

@@ -1,0 +1,378 @@
+#include "palpa/ui/trainee_window.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <QCloseEvent>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QListWidget>
+#include <QMouseEvent>
+#include <QPushButton>
+#include <QStatusBar>
+#include <QVBoxLayout>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QWheelEvent>
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkLineSource.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkSphereSource.h>
+
+#include "palpa/ui/force_gauge.hpp"
+#include "palpa/ui/score_card.hpp"
+
+namespace palpa::ui {
+namespace {
+
+constexpr double kFingertipRadius = 0.006;  // m: drawn probe
+constexpr double kMaxPressDepth = 0.040;    // m
+constexpr double kDepthStep = 0.001;        // m per wheel notch or key press
+constexpr double kLift = 0.015;             // m above the surface when the pointer leaves the body
+
+vtkSmartPointer<vtkActor> sphere_actor(const trainer::Vec3& centre, double radius, double r, double g, double b) {
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(24);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->SetPosition(centre.x(), centre.y(), centre.z());
+  actor->GetProperty()->SetColor(r, g, b);
+  actor->GetProperty()->SetInterpolationToPhong();
+  return actor;
+}
+
+vtkSmartPointer<vtkActor> line_actor(const trainer::Vec3& a, const trainer::Vec3& b, double r, double g, double bl) {
+  vtkNew<vtkLineSource> line;
+  line->SetPoint1(a.x(), a.y(), a.z());
+  line->SetPoint2(b.x(), b.y(), b.z());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(line->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, bl);
+  actor->GetProperty()->SetLineWidth(3.0F);
+  return actor;
+}
+
+}  // namespace
+
+TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start,
+                             QWidget* parent)
+    : QMainWindow(parent), exercise_(std::move(exercise)) {
+  setWindowTitle(tr("Palpa: trainee exercise (%1)").arg(case_name));
+  resize(1200, 760);
+
+  auto* central = new QWidget(this);
+  auto* layout = new QHBoxLayout(central);
+  view_ = new QVTKOpenGLNativeWidget(central);
+  view_->setMouseTracking(true);  // the pointer palpates without a button held
+  view_->setFocusPolicy(Qt::StrongFocus);
+  view_->installEventFilter(this);
+  layout->addWidget(view_, 1);
+
+  auto* side = new QVBoxLayout;
+  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body to palpate; the wheel "
+                             "or Up/Down sets how deep you press. <b>M</b> marks where the finger is.<br>"
+                             "Left drag turns the view, Ctrl+wheel zooms."),
+                          central);
+  help->setWordWrap(true);
+  side->addWidget(help);
+  const auto& th = exercise_->thresholds();
+  gauge_ = new ForceGauge(th.light_max, th.deep_min, central);
+  side->addWidget(gauge_);
+  depth_label_ = new QLabel(central);
+  side->addWidget(depth_label_);
+  auto* marks_box = new QGroupBox(tr("Marks"), central);
+  auto* marks_layout = new QVBoxLayout(marks_box);
+  marks_list_ = new QListWidget(marks_box);
+  marks_layout->addWidget(marks_list_);
+  auto* mark_button = new QPushButton(tr("Mark here (M)"), marks_box);
+  remove_button_ = new QPushButton(tr("Remove"), marks_box);
+  auto* mark_buttons = new QHBoxLayout;
+  mark_buttons->addWidget(mark_button);
+  mark_buttons->addWidget(remove_button_);
+  marks_layout->addLayout(mark_buttons);
+  side->addWidget(marks_box, 1);
+  finish_button_ = new QPushButton(tr("Finish and score"), central);
+  side->addWidget(finish_button_);
+  auto* side_widget = new QWidget(central);
+  side_widget->setLayout(side);
+  side_widget->setFixedWidth(300);
+  layout->addWidget(side_widget);
+  setCentralWidget(central);
+
+  status_loop_ = new QLabel(this);
+  status_fps_ = new QLabel(this);
+  statusBar()->addWidget(status_loop_, 1);
+  statusBar()->addPermanentWidget(status_fps_);
+
+  connect(mark_button, &QPushButton::clicked, this, &TraineeWindow::place_mark);
+  connect(remove_button_, &QPushButton::clicked, this, &TraineeWindow::remove_selected_mark);
+  connect(finish_button_, &QPushButton::clicked, this, &TraineeWindow::finish);
+  connect(&timer_, &QTimer::timeout, this, &TraineeWindow::frame);
+
+  build_scene();
+  set_press_depth(press_depth_);
+  if (start) {
+    scheduling_ = exercise_->start();
+  } else {
+    finish_button_->setEnabled(false);
+    mark_button->setEnabled(false);
+  }
+  remove_button_->setEnabled(false);
+  connect(marks_list_, &QListWidget::itemSelectionChanged, this,
+          [this] { remove_button_->setEnabled(!marks_list_->selectedItems().isEmpty() && !score_); });
+  update_status();
+  fps_clock_.start();
+  timer_.setTimerType(Qt::PreciseTimer);
+  timer_.start(16);  // ~60 Hz
+}
+
+TraineeWindow::~TraineeWindow() = default;
+
+void TraineeWindow::build_scene() {
+  render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  view_->setRenderWindow(render_window_);
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->SetBackground(0.13, 0.15, 0.19);
+  renderer_->SetBackground2(0.30, 0.33, 0.40);
+  renderer_->GradientBackgroundOn();
+  render_window_->AddRenderer(renderer_);
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  view_->interactor()->SetInteractorStyle(style);
+
+  surfaces_ = std::make_unique<BodySurfaces>(exercise_->meshes(), renderer_);
+  // Frame the bodies (not the probe) from the front and above.
+  const auto& scene = exercise_->scene();
+  double bounds[6] = {std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (std::size_t b = 0; b < scene.size(); ++b) {
+    const auto& box = scene.body(b).bounds;
+    for (int k = 0; k < 3; ++k) {
+      bounds[2 * k] = std::min(bounds[2 * k], box.lo[k]);
+      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], box.hi[k]);
+    }
+  }
+  auto* camera = renderer_->GetActiveCamera();
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetPosition(0.0, -1.0, 0.9);
+  camera->SetViewUp(0.0, 0.0, 1.0);
+  if (scene.size() > 0) renderer_->ResetCamera(bounds);
+  camera->Zoom(1.25);
+  renderer_->ResetCameraClippingRange(bounds);
+
+  probe_ = sphere_actor(trainer::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
+  probe_->GetProperty()->SetOpacity(0.9);
+  probe_->VisibilityOff();
+  renderer_->AddActor(probe_);
+}
+
+QPoint TraineeWindow::to_view(const trainer::Vec3& point) const {
+  renderer_->SetWorldPoint(point.x(), point.y(), point.z(), 1.0);
+  renderer_->WorldToDisplay();
+  double d[3];
+  renderer_->GetDisplayPoint(d);
+  const double dpr = view_->devicePixelRatioF();
+  const int* size = render_window_->GetSize();
+  return {static_cast<int>(std::lround(d[0] / dpr)), static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr))};
+}
+
+void TraineeWindow::palpate_at(const QPoint& pos) {
+  const double dpr = view_->devicePixelRatioF();
+  const int* size = render_window_->GetSize();
+  const double x = pos.x() * dpr;
+  const double y = size[1] - 1 - pos.y() * dpr;
+  trainer::Vec3 ends[2];
+  for (int k = 0; k < 2; ++k) {
+    renderer_->SetDisplayPoint(x, y, k);
+    renderer_->DisplayToWorld();
+    double w[4];
+    renderer_->GetWorldPoint(w);
+    ends[k] = trainer::Vec3(w[0], w[1], w[2]) / (w[3] != 0.0 ? w[3] : 1.0);
+  }
+  const auto hit = exercise_->pick(ends[0], ends[1] - ends[0]);
+  if (hit) {
+    picked_ = hit;
+  } else if (picked_) {
+    picked_->distance = -1.0;  // off the body: lift where we were
+  }
+  update_target();
+}
+
+void TraineeWindow::update_target() {
+  if (!picked_) return;
+  const bool on_body = picked_->distance >= 0.0;
+  const trainer::Vec3 target = picked_->point + (on_body ? -press_depth_ : kLift) * picked_->normal;
+  exercise_->set_probe_target(target);
+}
+
+void TraineeWindow::set_press_depth(double metres) {
+  press_depth_ = std::clamp(metres, 0.0, kMaxPressDepth);
+  depth_label_->setText(tr("Press depth: %1 mm (wheel or Up/Down)").arg(press_depth_ * 1e3, 0, 'f', 0));
+  update_target();
+}
+
+void TraineeWindow::place_mark() {
+  if (!exercise_->started() || exercise_->finished()) return;
+  const auto mark = exercise_->place_mark();
+  // Drawn on the surface where the finger was, so it stays visible when the tissue springs back.
+  trainer::Vec3 at = mark.position;
+  if (picked_ && picked_->distance >= 0.0) at = picked_->point;
+  auto actor = sphere_actor(at, 0.0025, 0.85, 0.10, 0.15);
+  renderer_->AddActor(actor);
+  mark_actors_.emplace_back(mark.id, actor);
+  auto* item = new QListWidgetItem(tr("Mark %1 at %2 s").arg(mark.id).arg(mark.t, 0, 'f', 1), marks_list_);
+  item->setData(Qt::UserRole, QVariant::fromValue<qlonglong>(mark.id));
+}
+
+void TraineeWindow::remove_selected_mark() {
+  const auto selected = marks_list_->selectedItems();
+  for (auto* item : selected) {
+    const auto id = static_cast<std::int64_t>(item->data(Qt::UserRole).toLongLong());
+    if (!exercise_->remove_mark(id)) continue;
+    for (auto it = mark_actors_.begin(); it != mark_actors_.end(); ++it) {
+      if (it->first == id) {
+        renderer_->RemoveActor(it->second);
+        mark_actors_.erase(it);
+        break;
+      }
+    }
+    delete item;
+  }
+}
+
+void TraineeWindow::finish() {
+  if (!exercise_->started() || exercise_->finished()) return;
+  try {
+    score_ = exercise_->finish();
+  } catch (const std::exception& e) {
+    statusBar()->showMessage(tr("Could not score the session: %1").arg(e.what()));
+    return;
+  }
+  finish_button_->setEnabled(false);
+  remove_button_->setEnabled(false);
+  reveal(*score_);
+  score_card_ = new ScoreCard(*score_, QString::fromStdString(exercise_->session_path().string()), this);
+  score_card_->setAttribute(Qt::WA_DeleteOnClose, false);
+  score_card_->show();
+}
+
+void TraineeWindow::reveal(const score::Score& score) {
+  surfaces_->set_opacity(0.35);
+  for (const auto& t : score.tumours) {
+    const trainer::Vec3 c(t.center[0], t.center[1], t.center[2]);
+    renderer_->AddActor(t.found ? sphere_actor(c, t.radius, 0.20, 0.65, 0.25) : sphere_actor(c, t.radius, 0.75, 0.15, 0.15));
+  }
+  for (const auto& m : score.marks) {
+    const trainer::Vec3 p(m.position[0], m.position[1], m.position[2]);
+    if (m.tumour >= 0) {
+      const auto& t = score.tumours[static_cast<std::size_t>(m.tumour)];
+      renderer_->AddActor(line_actor(p, trainer::Vec3(t.center[0], t.center[1], t.center[2]), 0.2, 0.8, 0.3));
+    } else if (!score.tumours.empty()) {
+      // A false mark: a red line to the tumour nearest to it.
+      const auto nearest = std::min_element(score.tumours.begin(), score.tumours.end(), [&](const auto& a, const auto& b) {
+        return (trainer::Vec3(a.center[0], a.center[1], a.center[2]) - p).norm() <
+               (trainer::Vec3(b.center[0], b.center[1], b.center[2]) - p).norm();
+      });
+      renderer_->AddActor(
+          line_actor(p, trainer::Vec3(nearest->center[0], nearest->center[1], nearest->center[2]), 0.9, 0.2, 0.2));
+    }
+  }
+  probe_->VisibilityOff();
+  render_window_->Render();
+}
+
+void TraineeWindow::frame() {
+  if (exercise_->started() && !exercise_->finished()) {
+    exercise_->update();
+    surfaces_->sync(exercise_->meshes());
+    const auto& s = exercise_->snapshot();
+    if (s.tick > 0) {
+      // The fingertip rests on the dent: its centre one radius out from the probe point.
+      const trainer::Vec3 n = picked_ ? picked_->normal : trainer::Vec3::UnitZ();
+      const trainer::Vec3 c = trainer::Vec3(s.probe[0], s.probe[1], s.probe[2]) + kFingertipRadius * n;
+      probe_->SetPosition(c.x(), c.y(), c.z());
+      probe_->VisibilityOn();
+    }
+    gauge_->set_contact(exercise_->contact());
+  }
+  render_window_->Render();
+  ++frames_;
+  if (fps_clock_.elapsed() >= 1000) {
+    frame_rate_ = frames_ * 1000.0 / static_cast<double>(fps_clock_.restart());
+    frames_ = 0;
+    update_status();
+  }
+}
+
+void TraineeWindow::update_status() {
+  status_fps_->setText(tr("%1 fps").arg(frame_rate_, 0, 'f', 0));
+  if (!exercise_->started()) {
+    status_loop_->setText(tr("not started | device: %1").arg(QString::fromStdString(exercise_->device_name())));
+    return;
+  }
+  const auto& stats = exercise_->loop_stats();
+  const double mean = stats.mean_period();
+  const double rate = mean > 0.0 ? 1.0 / mean : 0.0;
+  const double jitter_us = (stats.period_percentile(0.99) - stats.period_percentile(0.5)) * 1e6;
+  status_loop_->setText(tr("haptic %1 Hz | jitter (p99-p50) %2 us | missed %3 | device: %4%5")
+                            .arg(rate, 0, 'f', 0)
+                            .arg(jitter_us, 0, 'f', 0)
+                            .arg(static_cast<qulonglong>(stats.missed()))
+                            .arg(QString::fromStdString(exercise_->device_name()))
+                            .arg(exercise_->finished() ? tr(" | finished") : QString()));
+  status_loop_->setToolTip(QString::fromStdString(scheduling_));
+}
+
+bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
+  if (watched != view_) return QMainWindow::eventFilter(watched, event);
+  switch (event->type()) {
+    case QEvent::MouseMove: {
+      auto* e = static_cast<QMouseEvent*>(event);
+      if (e->buttons() == Qt::NoButton) palpate_at(e->pos());
+      return false;  // VTK still turns the view on a drag
+    }
+    case QEvent::Wheel: {
+      auto* e = static_cast<QWheelEvent*>(event);
+      if (e->modifiers() & Qt::ControlModifier) return false;  // VTK zooms
+      set_press_depth(press_depth_ + kDepthStep * e->angleDelta().y() / 120.0);
+      return true;
+    }
+    case QEvent::KeyPress: {
+      auto* e = static_cast<QKeyEvent*>(event);
+      if (e->key() == Qt::Key_M) place_mark();
+      if (e->key() == Qt::Key_Up) set_press_depth(press_depth_ + kDepthStep);
+      if (e->key() == Qt::Key_Down) set_press_depth(press_depth_ - kDepthStep);
+      return true;  // no VTK key bindings (its 'q' and 'e' would end the application)
+    }
+    default:
+      return false;
+  }
+}
+
+void TraineeWindow::closeEvent(QCloseEvent* event) {
+  timer_.stop();
+  if (exercise_->started() && !exercise_->finished()) {
+    try {
+      exercise_->finish("window closed before finishing");  // the session ends complete, unscored here
+    } catch (const std::exception&) {
+      // The file keeps what was committed; nothing more to do on the way out.
+    }
+  }
+  QMainWindow::closeEvent(event);
+}
+
+}  // namespace palpa::ui
