@@ -1,0 +1,230 @@
+// The trainee window under Xvfb: it opens and records; the --screenshot image shows the
+// body; a palpation scripted with mouse and wheel events presses the tissue (force and a
+// moving surface); a mark over the tumour and Finish give a score card that found it; the
+// command line answers --help, --version and a bad case file.
+#include <QApplication>
+#include <QKeyEvent>
+#include <QListWidget>
+#include <QMouseEvent>
+#include <QProcess>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QWheelEvent>
+#include <QtTest>
+#include <functional>
+#include <memory>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/force_gauge.hpp"
+#include "palpa/ui/score_card.hpp"
+#include "palpa/ui/trainee_window.hpp"
+#include "palpa/version.hpp"
+
+namespace {
+
+const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
+
+std::unique_ptr<palpa::trainer::LiveExercise> make_exercise(const QString& session) {
+  palpa::trainer::LiveOptions o;
+  o.trainee = "ui-test";
+  o.seed = 11;
+  o.session_path = session.toStdString();
+  o.realtime.request_fifo = false;
+  o.device_settling = 0.01;
+  return std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o);
+}
+
+/// Lets the event loop (and the haptic thread) run until `done` or a generous deadline.
+bool wait_for(const std::function<bool()>& done, int ms = 5000) {
+  QElapsedTimer clock;
+  clock.start();
+  while (clock.elapsed() < ms) {
+    QTest::qWait(10);
+    if (done()) return true;
+  }
+  return false;
+}
+
+/// Screen position over the placed tumour: its centre seen straight from above, on the rest top contour.
+palpa::trainer::Vec3 top_over_tumour(palpa::trainer::LiveExercise& live) {
+  const auto& t = live.placed_case().tumours.at(0);
+  const palpa::trainer::Vec3 c(t.center[0], t.center[1], t.center[2]);
+  const auto hit = live.pick(c + palpa::trainer::Vec3(0, 0, 0.5), palpa::trainer::Vec3(0, 0, -1));
+  return hit ? hit->point : c;
+}
+
+void move_pointer(QWidget* view, const QPoint& at) {
+  QMouseEvent move(QEvent::MouseMove, at, view->mapToGlobal(at), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
+  QApplication::sendEvent(view, &move);
+}
+
+void wheel(QWidget* view, const QPoint& at, int notches) {
+  QWheelEvent e(QPointF(at), QPointF(view->mapToGlobal(at)), QPoint(), QPoint(0, 120 * notches), Qt::NoButton,
+                Qt::NoModifier, Qt::NoScrollPhase, false);
+  QApplication::sendEvent(view, &e);
+}
+
+/// Counts pixels of the skin colour the bodies are drawn in (reddish, lit or shaded): the
+/// background is blue-grey and the side panel grey, so neither counts.
+int skin_pixels(const QImage& image) {
+  int count = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      if (c.red() > 90 && c.red() - c.blue() > 35 && c.green() > c.blue()) ++count;
+    }
+  }
+  return count;
+}
+
+struct Run {
+  int code = -1;
+  QString out, err;
+};
+
+Run run_palpa(const QStringList& arguments) {
+  QProcess p;
+  p.start(PALPA_GUI_EXE, arguments);
+  p.waitForFinished(60000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
+          QString::fromUtf8(p.readAllStandardError())};
+}
+
+}  // namespace
+
+class TraineeWindowTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void opensAndRecordsASession() {
+    QTemporaryDir dir;
+    const QString session = dir.filePath("open.palpa");
+    palpa::ui::TraineeWindow window(make_exercise(session), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.windowTitle().contains("trainee"));
+    QVERIFY(window.exercise().started());
+    QVERIFY(QFile::exists(session));
+    // The status bar reports the haptic loop once it has published statistics.
+    QVERIFY(wait_for([&] { return window.exercise().loop_stats().ticks() >= 100; }));
+    QVERIFY(wait_for([&] { return window.frame_rate() > 0.0; }, 3000));
+    qInfo("frame rate under this display: %.1f fps (timer at 60 Hz)", window.frame_rate());  // for the record, not a test
+  }
+
+  void mousePalpationPressesTheTissue() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("press.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::qWait(100);
+    auto* view = window.view();
+    vtkPoints* points = window.surfaces().top(0)->GetPoints();
+    std::vector<double> rest_z(static_cast<std::size_t>(points->GetNumberOfPoints()));
+    for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k) rest_z[static_cast<std::size_t>(k)] = points->GetPoint(k)[2];
+
+    const QPoint at = window.to_view(top_over_tumour(window.exercise()));
+    QVERIFY(view->rect().contains(at));
+    move_pointer(view, at);
+    wheel(view, at, 6);  // 4 mm + 6 notches of 1 mm
+    QCOMPARE(window.press_depth(), 0.010);
+    QVERIFY2(wait_for([&] { return window.gauge()->contact().force > 1.0; }),
+             qPrintable(window.gauge()->text()));
+    QVERIFY(window.gauge()->contact().level != palpa::trainer::PressureLevel::None);
+    QVERIFY(window.exercise().meshes().version(0) > 0);
+    // The drawn surface (the VTK points themselves) sank under the finger by at least 2 mm.
+    QVERIFY(wait_for([&] {
+      vtkPoints* now = window.surfaces().top(0)->GetPoints();
+      double sink = 0.0;
+      for (vtkIdType k = 0; k < now->GetNumberOfPoints() && static_cast<std::size_t>(k) < rest_z.size(); ++k)
+        sink = std::max(sink, rest_z[static_cast<std::size_t>(k)] - now->GetPoint(k)[2]);
+      return sink > 0.002;
+    }));
+  }
+
+  void markOverTheTumourAndFinishGiveAScoreCardThatFoundIt() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("mark.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::qWait(100);
+    auto* view = window.view();
+    const QPoint at = window.to_view(top_over_tumour(window.exercise()));
+    move_pointer(view, at);
+    QVERIFY(wait_for([&] { return window.gauge()->contact().force > 1.0; }));
+    QTest::keyClick(view, Qt::Key_M);
+    auto* marks = window.findChild<QListWidget*>();
+    QVERIFY(marks);
+    QCOMPARE(marks->count(), 1);
+    QCOMPARE(window.exercise().marks().size(), std::size_t{1});
+
+    QPushButton* finish = nullptr;
+    for (auto* b : window.findChildren<QPushButton*>()) {
+      if (b->text().startsWith("Finish")) finish = b;
+    }
+    QVERIFY(finish);
+    QTest::mouseClick(finish, Qt::LeftButton);
+    QVERIFY(window.score().has_value());
+    QCOMPARE(window.score()->sensitivity, 1.0);
+    QCOMPARE(window.score()->false_positives, 0);
+    QVERIFY(window.score_card());
+    QVERIFY2(window.score_card()->headline().contains("1 of 1 tumours found"),
+             qPrintable(window.score_card()->headline()));
+    QVERIFY(window.score_card()->text().contains("sensitivity"));
+    QVERIFY(!finish->isEnabled());
+  }
+
+  void screenshotShowsTheBody() {
+    QTemporaryDir dir;
+    const QString png = dir.filePath("trainee.png");
+    const Run r = run_palpa({"--case", QString::fromStdString(kDefaultCase), "--seed", "3", "--screenshot", png});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QImage image(png);
+    QVERIFY(!image.isNull());
+    QCOMPARE(image.size(), QSize(1200, 760));
+    // The body covers a good part of the view (about a fifth of the window at the default
+    // camera); an empty view has none of its colour.
+    const int skin = skin_pixels(image);
+    QVERIFY2(skin > image.width() * image.height() / 10, qPrintable(QString::number(skin)));
+    QVERIFY(!QFile::exists(dir.filePath("trainee.palpa")));
+  }
+
+  void commandLineHelpVersionAndBadCase() {
+    const Run help = run_palpa({"--help"});
+    QCOMPARE(help.code, 0);
+    QVERIFY(help.out.contains("--screenshot"));
+    QVERIFY(help.out.contains("--case"));
+    const Run version = run_palpa({"--version"});
+    QCOMPARE(version.code, 0);
+    QCOMPARE(version.out.trimmed(), QString("palpa ") + palpa::kVersion);
+
+    QTemporaryDir dir;
+    const QString bad = dir.filePath("bad.json");
+    {
+      QFile f(bad);
+      QVERIFY(f.open(QIODevice::WriteOnly));
+      f.write("{\"format\": \"palpa-case\",\n  \"bodies\": [\n");
+    }
+    const Run r = run_palpa({"--case", bad});
+    QCOMPARE(r.code, 2);
+    const QStringList lines = r.err.trimmed().split('\n');
+    QCOMPARE(lines.size(), 1);
+    QVERIFY2(lines[0].startsWith(bad + ": line "), qPrintable(lines[0]));
+    const Run mode = run_palpa({"--mode", "nonsense"});
+    QCOMPARE(mode.code, 2);
+  }
+};
+
+int main(int argc, char** argv) {
+  // VTK's OpenGL wants its surface format on every Qt GL surface: before QApplication.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  TraineeWindowTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "trainee_window_test.moc"
