@@ -144,6 +144,9 @@ TraineeWindow::~TraineeWindow() = default;
 
 void TraineeWindow::build_scene() {
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  // No multisampling: with software OpenGL (Mesa llvmpipe under Xvfb) 8x MSAA costs most of
+  // a frame; smooth shading and the normals keep the surface smooth without it.
+  render_window_->SetMultiSamples(0);
   view_->setRenderWindow(render_window_);
   renderer_ = vtkSmartPointer<vtkRenderer>::New();
   renderer_->SetBackground(0.13, 0.15, 0.19);
