@@ -10,3 +10,11 @@ vtk_module_autoinit(TARGETS ui_tests MODULES ${VTK_LIBRARIES})
 palpa_warnings(ui_tests)
 add_dependencies(ui_tests palpa)  # the command-line and screenshot tests run the application
 add_test(NAME ui.trainee COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_tests>)
+if(PALPA_SANITIZE)
+  # Under the dev preset the GUI runs with AddressSanitizer and UBSan, but without
+  # LeakSanitizer: D-Bus (Qt's platform integration) and a library Mesa unloads leave a
+  # few small blocks at exit (1144 bytes in 3 allocations, none from Palpa), and the
+  # indirect ones come from an unloaded module that no suppression can name.
+  set_tests_properties(ui.trainee PROPERTIES ENVIRONMENT
+                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+endif()
