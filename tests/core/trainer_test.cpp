@@ -87,11 +87,13 @@ TEST(LiveExercise, PressingOverTheTumourPushesBackAndDeformsTheDrawnBody) {
   const auto& tumour = live.placed_case().tumours.at(0);
   const auto hit = top_above(live, Vec3(tumour.center[0], tumour.center[1], tumour.center[2]));
   live.set_probe_target(hit.point - 0.008 * hit.normal);  // 8 mm into the tissue
-  ASSERT_TRUE(run_until(live, [&] { return live.contact().force > 1.0 && live.meshes().version(0) > 0; }))
-      << "force " << live.contact().force;
+  // The virtual device follows the target smoothly: wait until the finger has arrived.
+  ASSERT_TRUE(run_until(live, [&] {
+    return live.contact().force > 1.0 && live.contact().depth > 0.0075 && live.meshes().version(0) > 0;
+  })) << "force " << live.contact().force << " depth " << live.contact().depth;
   const auto c = live.contact();
   EXPECT_EQ(c.body, 0);
-  EXPECT_GT(c.depth, 0.004);
+  EXPECT_NEAR(c.depth, 0.008, 5e-4);  // the target's depth below the rest top contour
   EXPECT_GT(c.thickness, 0.0);
   EXPECT_NEAR(c.fraction, c.depth / c.thickness, 1e-12);
   EXPECT_NE(c.level, PressureLevel::None);
