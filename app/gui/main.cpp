@@ -1,5 +1,5 @@
 // palpa: the Palpa application. Trainee mode: palpate a case with the mouse, mark what you
-// find, finish for the score card. Options are parsed before any window exists, so
+// find, finish for the score card. Review mode: replay a recorded session with its metrics. Options are parsed before any window exists, so
 // --help, --version and a bad case file answer without a display.
 #include <chrono>
 #include <cstdio>
@@ -17,7 +17,10 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include "palpa/io/case_file.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/review_window.hpp"
 #include "palpa/ui/screenshot.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/version.hpp"
@@ -46,6 +49,57 @@ std::filesystem::path default_session_path() {
   return base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + ".palpa");
 }
 
+void init_gui_format() {
+  // VTK's OpenGL needs this format on every Qt GL surface: set before QApplication exists.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+}
+
+// palpa --mode review --session FILE: the session is read and scored before any window
+// exists, so a bad file answers with one line and exit 2 (like palpa-cli score).
+int run_review(int argc, char** argv, const std::string& session_path, const std::string& screenshot) {
+  if (session_path.empty()) {
+    print_error("--mode review needs --session FILE (see palpa --help)");
+    return kBadInput;
+  }
+  palpa::session::Session session;
+  palpa::score::Score score;
+  try {
+    session = palpa::session::read_session(session_path);
+    score = palpa::score::score_session(session, session_path);
+  } catch (const palpa::session::SessionError& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::string line = session_path;
+    line += ": ";
+    line += e.what();
+    print_error(line);
+    return kBadInput;
+  }
+  init_gui_format();
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("palpa");
+  QApplication::setApplicationVersion(palpa::kVersion);
+  try {
+    palpa::ui::ReviewWindow window(std::move(session), std::move(score), session_path);
+    if (!screenshot.empty()) {
+      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
+        print_error(screenshot + ": could not write the screenshot");
+        return kFailure;
+      }
+      return kOk;
+    }
+    window.show();
+    return QApplication::exec();
+  } catch (const palpa::io::CaseError& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -61,10 +115,11 @@ int main(int argc, char** argv) {
                "palpa"};
   cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
   cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
-  cli.add_option("--mode", mode, "trainee (instructor and review are planned)")->check(CLI::IsMember({"trainee"}));
+  cli.add_option("--mode", mode, "trainee or review (instructor is planned)")
+      ->check(CLI::IsMember({"trainee", "review"}));
   cli.add_option("--session", session_path,
-                 "session file to record (never overwritten; default "
-                 "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa)");
+                 "trainee: session file to record (never overwritten; default "
+                 "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
   cli.add_option("--trainee", trainee, "trainee id recorded in the session (default: $USER)");
   cli.add_option("--seed", seed, "seed for placing the case's randomized tumours (default: a fresh one)")
       ->check(CLI::NonNegativeNumber);
@@ -81,6 +136,8 @@ int main(int argc, char** argv) {
     print_error(std::string(e.what()) + " (see palpa --help)");
     return kBadInput;
   }
+
+  if (mode == "review") return run_review(argc, argv, session_path, screenshot);
 
   if (trainee.empty()) {
     const char* user = std::getenv("USER");
@@ -118,8 +175,7 @@ int main(int argc, char** argv) {
     return kFailure;
   }
 
-  // VTK's OpenGL needs this format on every Qt GL surface: set before QApplication exists.
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  init_gui_format();
   QApplication app(argc, argv);
   QApplication::setApplicationName("palpa");
   QApplication::setApplicationVersion(palpa::kVersion);

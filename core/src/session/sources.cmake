@@ -6,4 +6,5 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/session_writer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/session_reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/session_recorder.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/replay.cpp
 )
