@@ -18,3 +18,18 @@ if(PALPA_SANITIZE)
   set_tests_properties(ui.trainee PROPERTIES ENVIRONMENT
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
+
+# Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).
+add_executable(ui_review_tests ui/review_window_test.cpp)
+set_target_properties(ui_review_tests PROPERTIES AUTOMOC ON)
+target_link_libraries(ui_review_tests PRIVATE palpa_ui Qt5::Test)
+target_compile_definitions(ui_review_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                                   PALPA_GUI_EXE="$<TARGET_FILE:palpa>")
+vtk_module_autoinit(TARGETS ui_review_tests MODULES ${VTK_LIBRARIES})
+palpa_warnings(ui_review_tests)
+add_dependencies(ui_review_tests palpa)
+add_test(NAME ui.review COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_review_tests>)
+if(PALPA_SANITIZE)
+  set_tests_properties(ui.review PROPERTIES ENVIRONMENT
+                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+endif()

@@ -83,6 +83,7 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
   try {
     palpa::ui::ReviewWindow window(std::move(session), std::move(score), session_path);
     if (!screenshot.empty()) {
+      window.set_time(window.span().end);  // the whole exam: every mark standing at the end
       if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
         print_error(screenshot + ": could not write the screenshot");
         return kFailure;
