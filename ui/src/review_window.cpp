@@ -22,6 +22,7 @@
 #include <vtkCellArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkLineSource.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -258,6 +259,8 @@ void ReviewWindow::set_time(double t) {
   render_window_->Render();
 }
 
+std::size_t ReviewWindow::marks_shown() const { return static_cast<std::size_t>(marks_list_->count()); }
+
 void ReviewWindow::update_marks() {
   // Only redraw when the set of events at or before t changed.
   const auto upto = static_cast<std::size_t>(
@@ -270,9 +273,28 @@ void ReviewWindow::update_marks() {
   mark_actors_.clear();
   marks_list_->clear();
   for (const auto& m : session::marks_at(session_.events, t_)) {
-    auto actor = sphere(m.position, kMarkRadius, 0.85, 0.10, 0.15);
+    // The score knows which marks found a tumour (the marks standing at the end): those
+    // are drawn green with a line to the tumour's centre, the others red.
+    const auto scored = std::find_if(score_.marks.begin(), score_.marks.end(),
+                                     [&](const score::MarkResult& r) { return r.id == m.id; });
+    const bool hit = scored != score_.marks.end() && scored->tumour >= 0;
+    auto actor = hit ? sphere(m.position, kMarkRadius, 0.20, 0.80, 0.30) : sphere(m.position, kMarkRadius, 0.85, 0.10, 0.15);
     renderer_->AddActor(actor);
     mark_actors_.push_back(actor);
+    if (hit) {
+      const auto& tumour = score_.tumours[static_cast<std::size_t>(scored->tumour)];
+      vtkNew<vtkLineSource> line;
+      line->SetPoint1(m.position.data());
+      line->SetPoint2(tumour.center.data());
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(line->GetOutputPort());
+      auto link = vtkSmartPointer<vtkActor>::New();
+      link->SetMapper(mapper);
+      link->GetProperty()->SetColor(0.20, 0.80, 0.30);
+      link->GetProperty()->SetLineWidth(3.0F);
+      renderer_->AddActor(link);
+      mark_actors_.push_back(link);
+    }
     marks_list_->addItem(tr("Mark %1 at %2 s").arg(m.id).arg(m.t - span_.start, 0, 'f', 1));
   }
 }

@@ -53,7 +53,8 @@ class ReviewWindow : public QMainWindow {
   std::array<double, 3> fingertip_centre() const;
   bool playing() const { return playing_; }
   double speed() const { return speed_; }
-  std::size_t marks_shown() const { return mark_actors_.size(); }
+  /// Marks standing at the current time (listed and drawn).
+  std::size_t marks_shown() const;
   QSlider* scrubber() const { return scrubber_; }
   QPushButton* play_button() const { return play_button_; }
   QComboBox* speed_box() const { return speed_box_; }
@@ -98,7 +99,7 @@ class ReviewWindow : public QMainWindow {
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkActor> probe_;
-  std::vector<vtkSmartPointer<vtkActor>> mark_actors_;
+  std::vector<vtkSmartPointer<vtkActor>> mark_actors_;  // marks and their lines to the tumours found
   std::size_t marks_drawn_for_ = static_cast<std::size_t>(-1);  // event count the mark actors show
 
   QTimer timer_;
