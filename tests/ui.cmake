@@ -33,3 +33,10 @@ if(PALPA_SANITIZE)
   set_tests_properties(ui.review PROPERTIES ENVIRONMENT
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
+
+# palpa --bench on the smallest Table 1 scenes: rows, frames, deformation, haptic ticks (no timing thresholds).
+add_test(NAME ui.frame_bench COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/ui/test_frame_bench.py
+         --gui $<TARGET_FILE:palpa> --xvfb-run ${PALPA_XVFB_RUN})
+if(PALPA_SANITIZE)
+  set_tests_properties(ui.frame_bench PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
+endif()

@@ -16,77 +16,23 @@
 #include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/scene/table1_scenes.hpp"
 
 namespace palpa::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct SceneSpec {
-  int bodies;
-  int mat_points;
-  // grids: {count, rows, cols}
-  std::vector<std::array<int, 3>> grids;
-  // the paper's row (700 MHz Pentium III): preprocessing s, memory MB, haptic Hz with/without dynamics
-  double paper_pre_s, paper_mb, paper_hz_dyn, paper_hz_nodyn;
-};
+using scene::Table1Scene;
 
-const std::vector<SceneSpec>& table1_scenes() {
-  static const std::vector<SceneSpec> scenes{
-      {1, 49, {{1, 7, 7}}, 2, 0.4, 980, 993},
-      {1, 105, {{1, 7, 15}}, 3, 1.0, 979, 996},
-      {4, 213, {{3, 7, 8}, {1, 5, 9}}, 6, 1.8, 990, 993},
-      {10, 309, {{7, 5, 6}, {3, 3, 11}}, 9, 2.1, 980, 992},
-      {17, 465, {{15, 5, 5}, {1, 6, 8}, {1, 6, 7}}, 25, 3.0, 975, 980},
-      {35, 927, {{33, 5, 5}, {1, 6, 7}, {1, 6, 10}}, 56, 4.1, 980, 990},
-  };
-  return scenes;
-}
-
-// Breast-like domes side by side along x, 12 cm apart.
-io::CaseFile make_scene(const SceneSpec& spec) {
-  io::CaseFile file;
-  // (appends rather than operator+: GCC 12 misreports -Wrestrict on "literal" + to_string)
-  file.title = "Table 1 scene, ";
-  file.title += std::to_string(spec.bodies);
-  file.title += " bodies";
-  int index = 0;
-  for (const auto& [count, rows, cols] : spec.grids) {
-    for (int c = 0; c < count; ++c, ++index) {
-      mat::BodyGrid g;
-      g.id = "b";
-      g.id += std::to_string(index);
-      g.rows = rows;
-      g.cols = cols;
-      for (int i = 0; i < rows; ++i) {
-        for (int j = 0; j < cols; ++j) {
-          const double s = -1.0 + 2.0 * i / (rows - 1);
-          const double t = -1.0 + 2.0 * j / (cols - 1);
-          const double f = (1 - s * s) * (1 - t * t);
-          g.medial.push_back({0.12 * index + 0.05 * s, 0.05 * t, 0.015 * f});
-          g.radius.push_back(0.015 * f);
-          g.stiffness.push_back(150.0 + 150.0 * f);
-        }
-      }
-      file.bodies.push_back(std::move(g));
-    }
-  }
-  return file;
-}
-
-// Palpation over the scene: the finger visits the bodies in turn (one per 0.25 s), making
-// small circles and pressing 2-14 mm into each.
-engine::Trajectory palpation(const SceneSpec& spec, double seconds) {
+// The scripted palpation over the scene (scene::table1_probe) sampled at 200 Hz.
+engine::Trajectory palpation(const Table1Scene& spec, double seconds) {
   engine::Trajectory tr;
   const int steps = static_cast<int>(seconds * 200.0);
   for (int k = 0; k <= steps; ++k) {
     const double t = k / 200.0;
-    const int body = static_cast<int>(t / 0.25) % spec.bodies;
-    const double x = 0.12 * body + 0.015 * std::sin(9.0 * t);
-    const double y = 0.015 * std::cos(9.0 * t);
-    const double press = 0.008 + 0.006 * std::sin(5.0 * t);
     tr.t.push_back(t);
-    tr.position.emplace_back(x, y, 0.03 - press);
+    tr.position.push_back(scene::table1_probe(spec.bodies, t));
   }
   return tr;
 }
@@ -191,8 +137,8 @@ int run_bench_table1(const Table1Options& options) {
               "memory KB", "p50 us dyn", "p99 us dyn", "p50 nodyn", "p99 nodyn", "max Hz", "core %",
               "paper: preproc s, MB, Hz dyn/nodyn");
   std::vector<std::string> csv_rows;
-  for (const auto& spec : table1_scenes()) {
-    const auto file = make_scene(spec);
+  for (const auto& spec : scene::table1_scenes()) {
+    const auto file = scene::make_table1_case(spec);
     const auto start = Clock::now();
     const auto scene = scene::Scene::build(file, "table1");
     const double pre_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

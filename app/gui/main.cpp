@@ -16,6 +16,7 @@
 #include <QSurfaceFormat>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include "frame_bench.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
@@ -126,6 +127,18 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   cli.add_option("--screenshot", screenshot,
                  "render the window once at its default size, save this PNG and exit (no session is recorded)");
+  bool bench = false;
+  palpa::gui::FrameBenchOptions bench_options;
+  std::string bench_csv;
+  cli.add_flag("--bench", bench,
+               "measure the frame rate of the paper's Table 1 scenes (1-35 bodies) with the haptic loop at 1 kHz "
+               "and a scripted finger, dynamics on and off; print a table and exit");
+  cli.add_option("--seconds", bench_options.seconds, "with --bench: seconds measured per scene and mode (default 3)")
+      ->check(CLI::PositiveNumber);
+  cli.add_option("--csv", bench_csv, "with --bench: also write the rows to this CSV file");
+  cli.add_option("--max-bodies", bench_options.max_bodies,
+                 "with --bench: only the scenes with at most this many bodies (default: all)")
+      ->check(CLI::PositiveNumber);
   cli.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.");
   try {
     cli.parse(argc, argv);
@@ -138,6 +151,21 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
 
+  if (bench) {
+    if (!bench_csv.empty()) bench_options.csv = bench_csv;
+    init_gui_format();
+    QApplication app(argc, argv);
+    try {
+      return palpa::gui::run_frame_bench(bench_options);
+    } catch (const std::exception& e) {
+      print_error(e.what());
+      return kFailure;
+    }
+  }
+  if (!bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0) {
+    print_error("--seconds, --csv and --max-bodies go with --bench (see palpa --help)");
+    return kBadInput;
+  }
   if (mode == "review") return run_review(argc, argv, session_path, screenshot);
 
   if (trainee.empty()) {

@@ -1,6 +1,7 @@
 #include "palpa/ui/trainee_window.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -178,7 +179,9 @@ void TraineeWindow::build_scene() {
   renderer_->ResetCameraClippingRange(bounds);
 
   probe_ = sphere_actor(trainer::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
-  probe_->GetProperty()->SetOpacity(0.9);
+  // Opaque: one translucent actor makes VTK add its order-independent translucency passes
+  // (extra full-window buffers and a composite), which with software OpenGL cost ~9 ms a
+  // frame (palpa --bench, BENCHMARKS.md).
   probe_->VisibilityOff();
   renderer_->AddActor(probe_);
 }
@@ -298,10 +301,25 @@ void TraineeWindow::reveal(const score::Score& score) {
   render_window_->Render();
 }
 
+void TraineeWindow::set_frame_interval(int ms) {
+  if (ms < 0) {
+    timer_.stop();
+  } else {
+    timer_.start(ms);
+  }
+}
+
 void TraineeWindow::frame() {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  auto t0 = Clock::now();
+  auto t1 = t0, t2 = t0;
+  last_frame_.bodies_changed = 0;
   if (exercise_->started() && !exercise_->finished()) {
     exercise_->update();
-    surfaces_->sync(exercise_->meshes());
+    t1 = Clock::now();
+    last_frame_.bodies_changed = surfaces_->sync(exercise_->meshes());
+    t2 = Clock::now();
     const auto& s = exercise_->snapshot();
     if (s.tick > 0) {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
@@ -312,7 +330,11 @@ void TraineeWindow::frame() {
     }
     gauge_->set_contact(exercise_->contact());
   }
+  const auto t3 = Clock::now();
   render_window_->Render();
+  last_frame_.tessellate = seconds(t0, t1);
+  last_frame_.upload = seconds(t1, t2);
+  last_frame_.render = seconds(t3, Clock::now());
   ++frames_;
   if (fps_clock_.elapsed() >= 1000) {
     frame_rate_ = frames_ * 1000.0 / static_cast<double>(fps_clock_.restart());

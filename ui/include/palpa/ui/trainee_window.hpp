@@ -55,6 +55,19 @@ class TraineeWindow : public QMainWindow {
   /// Frames drawn per second over the last second.
   double frame_rate() const { return frame_rate_; }
 
+  /// Where the last frame() spent its time (s), for palpa --bench: taking the snapshot and
+  /// re-tessellating changed bodies, copying them into VTK, and VTK's render.
+  struct FrameTimes {
+    double tessellate = 0.0;
+    double upload = 0.0;
+    double render = 0.0;
+    std::size_t bodies_changed = 0;
+  };
+  const FrameTimes& last_frame() const { return last_frame_; }
+  /// Milliseconds between timed frames (16 by default, ~60 Hz); 0 draws whenever the event
+  /// loop is idle; a negative value stops the timer (a driver then calls frame() itself).
+  void set_frame_interval(int ms);
+
  public slots:
   /// The pointer is at `pos` (view pixels): pick the body there and press at the depth set.
   void palpate_at(const QPoint& pos);
@@ -94,6 +107,7 @@ class TraineeWindow : public QMainWindow {
   QElapsedTimer fps_clock_;
   int frames_ = 0;
   double frame_rate_ = 0.0;
+  FrameTimes last_frame_;
   double press_depth_ = 0.004;  // m
   std::optional<trainer::SurfacePick> picked_;
   std::optional<score::Score> score_;

@@ -1,0 +1,186 @@
+#include "frame_bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <time.h>
+#include <unistd.h>
+
+#include <QApplication>
+#include <QEventLoop>
+#include <QTimer>
+
+#include "palpa/scene/table1_scenes.hpp"
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/trainee_window.hpp"
+
+namespace palpa::gui {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Row {
+  int bodies = 0;
+  int mat_points = 0;
+  bool dynamics = false;
+  int frames = 0;
+  double fps_mean = 0.0;
+  double fps_p5 = 0.0;          // 5th percentile of per-frame rates = 1 / p95 frame time
+  double frame_p95_ms = 0.0;
+  double tessellate_ms = 0.0;   // means per frame
+  double upload_ms = 0.0;
+  double render_ms = 0.0;
+  double bodies_changed = 0.0;  // mean per frame
+  double cpu_ms = 0.0;          // process CPU time per frame, all threads
+  double haptic_hz = 0.0;
+  unsigned long long ticks = 0;
+  unsigned long long missed = 0;
+};
+
+// CPU time of the whole process (all threads: GUI, llvmpipe rasterizers, haptic, recorder).
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+Row measure(const scene::Table1Scene& spec, bool dynamics, double seconds, const std::filesystem::path& dir) {
+  trainer::LiveOptions options;
+  options.trainee = "bench";
+  options.mode = "bench";
+  options.engine.dynamics = dynamics;
+  options.session_path = dir / ("table1-" + std::to_string(spec.bodies) + (dynamics ? "-dyn" : "-nodyn") + ".palpa");
+  std::filesystem::remove(options.session_path);
+  auto exercise = std::make_unique<trainer::LiveExercise>(scene::make_table1_case(spec), "table1", options);
+  ui::TraineeWindow window(std::move(exercise), QString("Table 1, %1 bodies").arg(spec.bodies));
+  window.set_frame_interval(-1);  // this driver draws the frames, uncapped
+  window.show();
+
+  Row row;
+  row.bodies = spec.bodies;
+  row.mat_points = spec.mat_points;
+  row.dynamics = dynamics;
+  std::vector<double> periods;
+  double tessellate = 0.0, upload = 0.0, render = 0.0, changed = 0.0;
+  int warmup = 5;  // the first frames compile shaders and upload every body
+  const auto begin = Clock::now();
+  auto last = begin;
+  auto measured_from = begin;
+  double cpu_from = 0.0, cpu_used = 0.0;
+  QEventLoop loop;
+  QTimer tick;
+  // A zero timer fires whenever the event loop is idle, so Qt still composes and shows
+  // every frame between two of them: the period is what a trainee would see.
+  QObject::connect(&tick, &QTimer::timeout, [&] {
+    const auto now = Clock::now();
+    if (warmup == 0) {
+      // The period since the last tick covers the frame drawn then (window.last_frame()).
+      periods.push_back(std::chrono::duration<double>(now - last).count());
+      const auto& f = window.last_frame();
+      tessellate += f.tessellate;
+      upload += f.upload;
+      render += f.render;
+      changed += static_cast<double>(f.bodies_changed);
+      if (now - measured_from >= std::chrono::duration<double>(seconds)) {
+        cpu_used = process_cpu_seconds() - cpu_from;
+        loop.quit();
+        return;
+      }
+    } else if (--warmup == 0) {
+      measured_from = now;
+      cpu_from = process_cpu_seconds();
+    }
+    last = now;
+    const double t = std::chrono::duration<double>(now - begin).count();
+    window.exercise().set_probe_target(scene::table1_probe(spec.bodies, t));
+    window.frame();
+  });
+  tick.start(0);
+  loop.exec();
+  tick.stop();
+
+  const auto& stats = window.exercise().loop_stats();
+  row.ticks = stats.ticks();
+  row.missed = stats.missed();
+  row.haptic_hz = stats.mean_period() > 0.0 ? 1.0 / stats.mean_period() : 0.0;
+  row.frames = static_cast<int>(periods.size());
+  if (!periods.empty()) {
+    double total = 0.0;
+    for (double p : periods) total += p;
+    const double n = static_cast<double>(periods.size());
+    row.fps_mean = n / total;
+    const double p95 = percentile(periods, 0.95);
+    row.frame_p95_ms = p95 * 1e3;
+    row.fps_p5 = p95 > 0.0 ? 1.0 / p95 : 0.0;
+    row.tessellate_ms = tessellate / n * 1e3;
+    row.upload_ms = upload / n * 1e3;
+    row.render_ms = render / n * 1e3;
+    row.bodies_changed = changed / n;
+    row.cpu_ms = cpu_used / n * 1e3;
+  }
+  window.close();  // finishes the session; the file is only a by-product
+  std::filesystem::remove(options.session_path);
+  std::filesystem::remove(options.session_path.string() + "-wal");
+  std::filesystem::remove(options.session_path.string() + "-shm");
+  return row;
+}
+
+}  // namespace
+
+int run_frame_bench(const FrameBenchOptions& options) {
+  const auto dir = std::filesystem::temp_directory_path() / ("palpa-bench-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::printf("palpa --bench: trainee window at its default size, haptic loop at 1 kHz, scripted finger pressing into "
+              "the bodies, %.1f s per scene and mode\n",
+              options.seconds);
+  std::printf("%6s %5s %5s | %7s %8s %9s | %8s %8s %8s %7s %7s | %8s %7s %7s\n", "bodies", "MAT", "dyn", "fps",
+              "fps p5", "p95 ms", "tess ms", "copy ms", "rend ms", "changed", "cpu ms", "haptic", "missed", "ticks");
+  std::vector<Row> rows;
+  for (const auto& spec : scene::table1_scenes()) {
+    if (options.max_bodies > 0 && spec.bodies > options.max_bodies) continue;
+    for (const bool dynamics : {true, false}) {
+      const Row r = measure(spec, dynamics, options.seconds, dir);
+      std::printf("%6d %5d %5s | %7.1f %8.1f %9.2f | %8.2f %8.2f %8.2f %7.2f %7.1f | %6.0f Hz %7llu %7llu\n",
+                  r.bodies, r.mat_points, r.dynamics ? "on" : "off", r.fps_mean, r.fps_p5, r.frame_p95_ms,
+                  r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed, r.cpu_ms, r.haptic_hz, r.missed, r.ticks);
+      std::fflush(stdout);
+      rows.push_back(r);
+    }
+  }
+  std::filesystem::remove_all(dir);
+  std::printf("\nfps = frames / time; fps p5 = 1 / p95 frame time; tess/copy/rend = mean per frame of the snapshot "
+              "+ re-tessellation, the copy into VTK, VTK's render (the rest of a frame is Qt composing the window); "
+              "changed = bodies re-tessellated per frame; cpu ms = CPU time of all the process's threads per frame (what the "
+              "frame costs whatever else runs); haptic = the loop's mean rate over the window's life.\n");
+  if (options.csv) {
+    std::ofstream out(*options.csv);
+    out << "bodies,mat_points,dynamics,frames,fps_mean,fps_p5,frame_p95_ms,tessellate_ms,upload_ms,render_ms,"
+           "bodies_changed_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks\n";
+    for (const auto& r : rows) {
+      char line[400];
+      std::snprintf(line, sizeof line, "%d,%d,%d,%d,%.2f,%.2f,%.3f,%.3f,%.3f,%.3f,%.2f,%.3f,%.1f,%llu,%llu", r.bodies,
+                    r.mat_points, r.dynamics ? 1 : 0, r.frames, r.fps_mean, r.fps_p5, r.frame_p95_ms, r.tessellate_ms,
+                    r.upload_ms, r.render_ms, r.bodies_changed, r.cpu_ms, r.haptic_hz, r.missed, r.ticks);
+      out << line << "\n";
+    }
+    if (!out) {
+      std::fprintf(stderr, "palpa: error: %s: cannot write\n", options.csv->c_str());
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace palpa::gui

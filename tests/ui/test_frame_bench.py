@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""palpa --bench, end to end under Xvfb on the smallest Table 1 scenes: the table and the
+CSV have one row per scene and mode, frames were drawn (positive frame rates), bodies were
+re-tessellated (the finger deformed them), the haptic loop ticked, and the frame breakdown
+adds up to no more than the frame. No timing thresholds: the rates depend on the machine.
+
+Run: python3 tests/ui/test_frame_bench.py --gui build/release/app/gui/palpa --xvfb-run xvfb-run
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+GUI = None
+XVFB_RUN = None
+
+
+def bench(args):
+    return subprocess.run([XVFB_RUN, "-a", GUI, "--bench"] + args, capture_output=True, text=True, timeout=300)
+
+
+class FrameBench(unittest.TestCase):
+    def test_smallest_scenes_give_rows_with_frames_and_haptic_ticks(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_framebench_") as d:
+            out = os.path.join(d, "frames.csv")
+            res = bench(["--seconds", "0.3", "--max-bodies", "1", "--csv", out])
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(out, newline="") as f:
+                rows = list(csv.DictReader(f))
+        # Table 1's two single-body scenes (49 and 105 MAT points), dynamics on and off.
+        self.assertEqual([(r["bodies"], r["mat_points"], r["dynamics"]) for r in rows],
+                         [("1", "49", "1"), ("1", "49", "0"), ("1", "105", "1"), ("1", "105", "0")])
+        for r in rows:
+            frames = int(r["frames"])
+            self.assertGreater(frames, 0, r)
+            self.assertGreater(float(r["fps_mean"]), 0.0, r)
+            self.assertGreater(float(r["fps_p5"]), 0.0, r)
+            # fps p5 is by definition 1 / p95 frame time (both rounded in the CSV)
+            self.assertAlmostEqual(float(r["fps_p5"]), 1000.0 / float(r["frame_p95_ms"]), delta=0.1)
+            self.assertGreater(float(r["bodies_changed_per_frame"]), 0.0, r)  # the finger deformed the body
+            self.assertGreater(float(r["cpu_ms_per_frame"]), 0.0, r)
+            self.assertGreater(int(r["haptic_ticks"]), 0, r)
+            self.assertLessEqual(int(r["haptic_missed"]), int(r["haptic_ticks"]), r)
+            # the parts of a frame cannot take longer than the mean frame
+            parts = float(r["tessellate_ms"]) + float(r["upload_ms"]) + float(r["render_ms"])
+            self.assertLessEqual(parts, 1000.0 / float(r["fps_mean"]) + 1e-6, r)
+        self.assertIn("bodies", res.stdout)
+        self.assertEqual(sum(1 for line in res.stdout.splitlines() if line.strip().startswith("1 ")), 4, res.stdout)
+
+    def test_bench_options_without_bench_are_refused(self):
+        res = subprocess.run([GUI, "--seconds", "1"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--bench", res.stderr)
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--gui", required=True)
+    parser.add_argument("--xvfb-run", required=True)
+    args, rest = parser.parse_known_args()
+    GUI = os.path.abspath(args.gui)
+    XVFB_RUN = args.xvfb_run
+    unittest.main(argv=[sys.argv[0]] + rest)
