@@ -12,3 +12,10 @@ if(PALPA_SANITIZE)
   set_tests_properties(ui.app PROPERTIES ENVIRONMENT
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
+
+# SIGTERM / SIGINT mid-exercise: the window closes normally and the session is finished.
+add_test(NAME ui.signal COMMAND ${PALPA_XVFB_RUN} -a ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/ui/test_gui_signal.py
+         --gui $<TARGET_FILE:palpa> --cli ${cli})
+if(PALPA_SANITIZE)
+  set_tests_properties(ui.signal PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
+endif()

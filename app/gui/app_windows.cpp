@@ -67,7 +67,7 @@ void AppWindows::fail(const QString& line, QWidget* parent) {
   }
 }
 
-void AppWindows::wire(QMainWindow& window) {
+void AppWindows::adopt(QMainWindow& window) {
   window.setAttribute(Qt::WA_DeleteOnClose);
   auto* menu = new ui::ModeMenu(window);
   connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
@@ -95,7 +95,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
     auto exercise = std::make_unique<trainer::LiveExercise>(io::load_case(source), source, options);
     auto* window = new ui::TraineeWindow(std::move(exercise), file_name(case_path));
     first_trainee_ = false;
-    wire(*window);
+    adopt(*window);
     window->show();
     std::fprintf(stderr, "palpa: recording the session in %s\n", options.session_path.c_str());
     return window;
@@ -118,7 +118,7 @@ QMainWindow* AppWindows::open_review(const QString& session_path, QWidget* paren
     session::Session session = session::read_session(path);
     score::Score score = score::score_session(session, path);
     auto* window = new ui::ReviewWindow(std::move(session), std::move(score), path);
-    wire(*window);
+    adopt(*window);
     window->show();
     return window;
   } catch (const session::SessionError& e) {

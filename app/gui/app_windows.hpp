@@ -19,8 +19,8 @@ namespace palpa::gui {
 struct TraineeSettings {
   std::string trainee = "trainee";       ///< id recorded in every session
   std::optional<std::uint64_t> seed;     ///< placement seed; a fresh one per exercise when unset
-  /// The first trainee window records here; later ones (and an empty path) record to
-  /// default_session_path().
+  /// The first trainee window open_trainee makes records here; later ones (and an empty
+  /// path) record to default_session_path().
   std::filesystem::path first_session;
 };
 
@@ -37,12 +37,15 @@ class AppWindows : public QObject {
   QMainWindow* open_trainee(const QString& case_path, QWidget* parent = nullptr);
   QMainWindow* open_review(const QString& session_path, QWidget* parent = nullptr);
 
+  /// Takes a window opened elsewhere (main's first window): gives it the File menu and
+  /// lets it delete itself when closed.
+  void adopt(QMainWindow& window);
+
   /// The last error line ("FILE: WHERE: REASON"), empty after a success.
   const QString& last_error() const { return last_error_; }
 
  private:
   void fail(const QString& line, QWidget* parent);
-  void wire(QMainWindow& window);
 
   TraineeSettings settings_;
   bool first_trainee_ = true;
