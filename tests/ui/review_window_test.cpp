@@ -14,12 +14,19 @@
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/ui/review_window.hpp"
+#include "palpa/ui/session_charts.hpp"
+#include "palpa/ui/vtk_view.hpp"
+
+#include <vtkAxis.h>
+#include <vtkChartXY.h>
+#include <vtkTable.h>
 
 namespace {
 
@@ -150,6 +157,81 @@ class ReviewWindowTest : public QObject {
     QVERIFY(QFile::exists(QString::fromStdString((out / "expert.xapi.json").string())));
     // A folder that cannot be made: false, no crash.
     QVERIFY(!w->export_report("/proc/palpa-no-such-dir"));
+  }
+
+  void chartSeriesHoldTheSessionsSamples() {
+    auto w = open_review(kExpert);
+    auto* charts = w->charts();
+    const auto& samples = w->session().samples;
+    const double start = w->span().start;
+    auto* force = charts->force_table();
+    auto* depth = charts->depth_table();
+    QVERIFY(force->GetNumberOfRows() > 1000);
+    QVERIFY(force->GetNumberOfRows() <= static_cast<vtkIdType>(palpa::ui::SessionCharts::kMaxPoints));
+    QVERIFY(depth->GetNumberOfRows() <= static_cast<vtkIdType>(palpa::ui::SessionCharts::kMaxPoints));
+    // Independent truth: the peaks over every sample, which min/max decimation keeps exactly.
+    double peak_depth = 0.0;
+    for (const auto& s : samples) peak_depth = std::max(peak_depth, s.body >= 0 ? s.depth * 1e3 : 0.0);
+    double max_force = 0.0, max_depth = 0.0, last_t = -1.0;
+    for (vtkIdType r = 0; r < force->GetNumberOfRows(); ++r) {
+      const double t = force->GetValue(r, 0).ToDouble();
+      QVERIFY(t > last_t);  // time order
+      last_t = t;
+      max_force = std::max(max_force, force->GetValue(r, 1).ToDouble());
+    }
+    for (vtkIdType r = 0; r < depth->GetNumberOfRows(); ++r) max_depth = std::max(max_depth, depth->GetValue(r, 1).ToDouble());
+    QVERIFY2(std::abs(max_force - w->score().peak_force_n) < 1e-9, qPrintable(QString::number(max_force)));
+    QVERIFY2(std::abs(max_depth - peak_depth) < 1e-9, qPrintable(QString::number(max_depth)));
+    // The first and last samples are in the force series, at times from the span's start.
+    QCOMPARE(force->GetValue(0, 0).ToDouble(), samples.front().t - start);
+    QCOMPARE(force->GetValue(force->GetNumberOfRows() - 1, 0).ToDouble(), samples.back().t - start);
+    // A point of the series is a real sample: |F| at its time.
+    const vtkIdType mid = force->GetNumberOfRows() / 2;
+    const auto& s = samples[palpa::session::sample_at(samples, force->GetValue(mid, 0).ToDouble() + start)];
+    QVERIFY(std::abs(force->GetValue(mid, 1).ToDouble() - std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] +
+                                                                   s.force[2] * s.force[2])) < 1e-9);
+    // One marker per Mark event, at its time.
+    std::vector<double> mark_times;
+    for (const auto& e : w->session().events)
+      if (e.kind == palpa::session::EventKind::Mark) mark_times.push_back(e.t - start);
+    QVERIFY(!mark_times.empty());
+    QCOMPARE(charts->mark_markers(), mark_times.size());
+    for (std::size_t m = 0; m < mark_times.size(); ++m) {
+      QCOMPARE(charts->mark_table()->GetValue(static_cast<vtkIdType>(2 * m), 0).ToDouble(), mark_times[m]);
+      QCOMPARE(charts->mark_table()->GetValue(static_cast<vtkIdType>(2 * m + 1), 0).ToDouble(), mark_times[m]);
+    }
+    // The time axis spans the replay.
+    QCOMPARE(charts->chart()->GetAxis(vtkAxis::BOTTOM)->GetMaximum(), w->span().end - start);
+  }
+
+  void chartCursorFollowsTheScrubberAndAClickSeeks() {
+    auto w = open_review(kExpert);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    auto* charts = w->charts();
+    const auto rows_before = charts->force_table()->GetNumberOfRows();
+    for (int value : {0, 3000, 7777, palpa::ui::ReviewWindow::kSliderSteps}) {
+      w->scrubber()->setValue(value);
+      QCOMPARE(charts->cursor_time(), w->time());
+      QCOMPARE(charts->cursor_table()->GetValue(0, 0).ToDouble(), w->time() - w->span().start);
+      QCOMPARE(charts->cursor_table()->GetValue(1, 0).ToDouble(), w->time() - w->span().start);
+    }
+    QCOMPARE(charts->force_table()->GetNumberOfRows(), rows_before);  // series untouched
+    // A click at 3/4 of the time axis' length (its ends as drawn) seeks to 3/4 of the span.
+    QTest::qWait(100);
+    auto* axis = charts->chart()->GetAxis(vtkAxis::BOTTOM);
+    const double left = static_cast<double>(axis->GetPoint1()[0]);
+    const double right = static_cast<double>(axis->GetPoint2()[0]);
+    QVERIFY2(right > left + 200.0, qPrintable(QString("%1 %2").arg(left).arg(right)));
+    auto* input = charts->view()->input();
+    const QPoint at(static_cast<int>(std::lround(left + 0.75 * (right - left))), charts->view()->height() / 2);
+    QTest::mousePress(input, Qt::LeftButton, Qt::NoModifier, at);
+    QTest::mouseRelease(input, Qt::LeftButton, Qt::NoModifier, at);
+    const auto span = w->span();
+    const double expected = span.start + 0.75 * (span.end - span.start);
+    const double pixel = (span.end - span.start) / (right - left);
+    QVERIFY2(std::abs(w->time() - expected) <= 1.01 * pixel, qPrintable(QString("%1 vs %2").arg(w->time()).arg(expected)));
+    QCOMPARE(charts->cursor_time(), w->time());
   }
 
   void commandLineRejectsBadSessions() {
