@@ -11,6 +11,7 @@
 #include <QSlider>
 #include <QSurfaceFormat>
 #include <QTableWidget>
+#include <QSet>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
@@ -21,6 +22,7 @@
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/ui/review_window.hpp"
+#include "palpa/ui/score_card.hpp"
 #include "palpa/ui/session_charts.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
@@ -50,6 +52,28 @@ Run run_palpa(const QStringList& arguments) {
   p.waitForFinished(60000);
   return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
           QString::fromUtf8(p.readAllStandardError())};
+}
+
+// Pixels within `tolerance` of an RGB colour in each channel.
+int pixels_near(const QImage& image, QColor colour, int tolerance, QRect area = {}) {
+  if (area.isNull()) area = image.rect();
+  int count = 0;
+  for (int y = area.top(); y <= area.bottom(); ++y) {
+    for (int x = area.left(); x <= area.right(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      if (std::abs(c.red() - colour.red()) <= tolerance && std::abs(c.green() - colour.green()) <= tolerance &&
+          std::abs(c.blue() - colour.blue()) <= tolerance)
+        ++count;
+    }
+  }
+  return count;
+}
+
+int distinct_colours(const QImage& image) {
+  QSet<QRgb> colours;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) colours.insert(image.pixel(x, y));
+  return colours.size();
 }
 
 // The probe path's colour (amber): neither the background, the skin nor the panel has it.
@@ -232,6 +256,30 @@ class ReviewWindowTest : public QObject {
     const double pixel = (span.end - span.start) / (right - left);
     QVERIFY2(std::abs(w->time() - expected) <= 1.01 * pixel, qPrintable(QString("%1 vs %2").arg(w->time()).arg(expected)));
     QCOMPARE(charts->cursor_time(), w->time());
+  }
+
+  void scoreCardShowsTheCoverageAndPressureMaps() {
+    auto session = palpa::session::read_session(kExpert);
+    const auto score = palpa::score::score_session(session, kExpert);
+    palpa::ui::ScoreCard card(score, "expert.palpa");
+    card.show();
+    for (auto* map : {card.coverage_map(), card.pressure_map()}) {
+      const QImage image = map->pixmap(Qt::ReturnByValue).toImage();
+      QVERIFY(!image.isNull());
+      QCOMPARE(image.width(), palpa::ui::ScoreCard::kMapWidth);
+      // A heatmap or a level map with its legend, not a blank or one-colour image.
+      const int colours = distinct_colours(image);
+      QVERIFY2(colours > 20, qPrintable(QString::number(colours)));
+      QVERIFY(map->isVisible());
+    }
+    // The expert found the tumour: its circle is drawn in report::found_colour (green), which
+    // the pressure map's blues and greys do not contain.
+    const int found = pixels_near(card.pressure_map()->pixmap(Qt::ReturnByValue).toImage(), QColor(40, 170, 40), 40);
+    QVERIFY2(found > 20, qPrintable(QString::number(found)));
+    // The coverage map's dwell colours: the whole region was covered, so most of the map is
+    // coloured, not the untouched grey (200, 200, 200).
+    const QImage coverage = card.coverage_map()->pixmap(Qt::ReturnByValue).toImage();
+    QVERIFY(pixels_near(coverage, QColor(200, 200, 200), 3) < coverage.width() * coverage.height() / 10);
   }
 
   void commandLineRejectsBadSessions() {
