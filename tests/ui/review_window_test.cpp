@@ -1,7 +1,10 @@
 // Review mode (QtTest under Xvfb): the window replays data/sessions/expert.palpa; scrubbing
 // puts the fingertip on the sample standing at that time, play advances time, the metrics
 // table agrees with palpa-cli's score card, Export writes the report; the command line
-// rejects a bad session with one line and exit 2, and --screenshot draws the scene.
+// rejects a bad session with one line and exit 2, and --screenshot draws the scene and the
+// charts. The charts (SessionCharts) hold the session's samples, one marker per mark and a
+// cursor that follows the scrubber; the trainee's score card shows the coverage and
+// pressure maps.
 #include <QApplication>
 #include <QComboBox>
 #include <QFile>
@@ -310,6 +313,23 @@ class ReviewWindowTest : public QObject {
     QCOMPARE(image.size(), QSize(1200, 760));
     const int path = path_pixels(image);
     QVERIFY2(path > 5000, qPrintable(QString::number(path)));
+    // The chart under the 3-D view: where this process' window of the same size puts the
+    // chart's view, the screenshot has the white plot background, the force line (purple)
+    // and the depth lines (blues).
+    auto w = open_review(kExpert);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    QCOMPARE(w->size(), QSize(1200, 760));
+    auto* view = w->charts()->view();
+    const QRect chart(view->mapTo(w.get(), QPoint(0, 0)), view->size());
+    QVERIFY(chart.height() > 150 && chart.width() > 600);
+    const int area = chart.width() * chart.height();
+    const int white = pixels_near(image, QColor(255, 255, 255), 2, chart);
+    const int force = pixels_near(image, QColor(128, 0, 160), 30, chart);
+    const int depth = pixels_near(image, QColor(66, 146, 198), 30, chart);
+    QVERIFY2(white > area / 5, qPrintable(QString::number(white)));
+    QVERIFY2(force > area / 50, qPrintable(QString::number(force)));
+    QVERIFY2(depth > area / 50, qPrintable(QString::number(depth)));
   }
 };
 
