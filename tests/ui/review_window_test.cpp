@@ -259,6 +259,10 @@ class ReviewWindowTest : public QObject {
     const double pixel = (span.end - span.start) / (right - left);
     QVERIFY2(std::abs(w->time() - expected) <= 1.01 * pixel, qPrintable(QString("%1 vs %2").arg(w->time()).arg(expected)));
     QCOMPARE(charts->cursor_time(), w->time());
+    // The cursor's column on the drawn axis, and the chart redrawn there.
+    w->scrubber()->setValue(palpa::ui::ReviewWindow::kSliderSteps / 4);
+    QVERIFY(std::abs(charts->cursor_pixel() - (left + 0.25 * (right - left))) <= 1.0);
+    QCOMPARE(charts->drawn_cursor_pixel(), charts->cursor_pixel());
   }
 
   void scoreCardShowsTheCoverageAndPressureMaps() {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -164,20 +163,21 @@ void SessionCharts::build(const session::Session& session, const score::Score& s
 
   force_ = table({"t (s)", "|F| (N)"});
   for (const std::size_t i : min_max_decimate(force, kMaxPoints)) add_row(force_, {samples[i].t - span_.start, force[i]});
-  // VTK's line plots have one colour: the depth is drawn as one series per pressure level,
-  // NaN (a gap) elsewhere. A point also goes into its neighbours' levels so that the
-  // segment between two levels is drawn (the deeper level, drawn last, shows on top).
-  depth_ = table({"t (s)", "depth (mm)", "level", kLevelName[0], kLevelName[1], kLevelName[2], kLevelName[3]});
+  // VTK's line plots have one colour: the depth line is drawn as separate segments, one
+  // series per pressure level, each segment in the deeper level of its two ends. Segment
+  // pairs (not NaN gaps) keep it to one draw call per level: a NaN-split series costs one
+  // call per piece, which made a frame several times slower under software OpenGL.
+  depth_ = table({"t (s)", "depth (mm)", "level"});
   const auto kept = min_max_decimate(depth_mm, kMaxPoints);
   std::vector<int> levels(kept.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) levels[k] = level_of(samples[kept[k]]);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    double by_level[4] = {nan, nan, nan, nan};
-    for (const std::size_t j : {k == 0 ? k : k - 1, k, std::min(k + 1, kept.size() - 1)})
-      by_level[levels[j]] = depth_mm[kept[k]];
-    add_row(depth_, {samples[kept[k]].t - span_.start, depth_mm[kept[k]], static_cast<double>(levels[k]), by_level[0],
-                     by_level[1], by_level[2], by_level[3]});
+    levels[k] = level_of(samples[kept[k]]);
+    add_row(depth_, {samples[kept[k]].t - span_.start, depth_mm[kept[k]], static_cast<double>(levels[k])});
+  }
+  for (int l = 0; l < 4; ++l) level_segments_[l] = table({"t (s)", kLevelName[l]});
+  for (std::size_t k = 0; k + 1 < kept.size(); ++k) {
+    auto* segments = level_segments_[std::max(levels[k], levels[k + 1])].Get();
+    for (const std::size_t j : {k, k + 1}) add_row(segments, {samples[kept[j]].t - span_.start, depth_mm[kept[j]]});
   }
 
   const bool show_limit = peak > 0.5 * score.thresholds.max_force;
@@ -198,8 +198,11 @@ void SessionCharts::build(const session::Session& session, const score::Score& s
 
   // Depth on the left axis (corner 0), the force and the lines in newtons on the right
   // (corner 1): vtkChartXY draws corner by corner, so the force line stays on top.
-  for (int l = 0; l < 4; ++l) add_line(chart_, depth_, kLevelName[l], kLevel[l], 1.5F);
-  add_line(chart_, force_, "|F| (N)", kForce, 1.5F, 1);
+  for (int l = 0; l < 4; ++l) {
+    auto* level = vtkPlotLine::SafeDownCast(add_line(chart_, level_segments_[l], kLevelName[l], kLevel[l], 1.0F));
+    level->PolyLineOff();
+  }
+  add_line(chart_, force_, "|F| (N)", kForce, 1.0F, 1);
   auto* marks = vtkPlotLine::SafeDownCast(add_line(chart_, marks_, "marker", kMark, 1.5F, 1));
   marks->PolyLineOff();  // one segment per pair of rows
   marks->GetPen()->SetLineType(vtkPen::DASH_LINE);
@@ -232,7 +235,22 @@ void SessionCharts::set_cursor(double t) {
   column->SetValue(1, x);
   column->Modified();
   cursor_->Modified();
+  // A chart frame costs about as much as the 3-D view's under software OpenGL; the cursor
+  // moves one pixel per ~0.15 s of a two-minute session, so redraw only when it would land
+  // on another pixel column (the new value shows at the next redraw in any case).
+  const int pixel = cursor_pixel();
+  if (pixel >= 0 && pixel == drawn_pixel_) return;
+  drawn_pixel_ = pixel;
   render_window_->Render();
+}
+
+int SessionCharts::cursor_pixel() const {
+  auto* axis = chart_->GetAxis(vtkAxis::BOTTOM);
+  const double left = static_cast<double>(axis->GetPoint1()[0]);
+  const double right = static_cast<double>(axis->GetPoint2()[0]);
+  const double range = axis->GetMaximum() - axis->GetMinimum();
+  if (!(right > left) || !(range > 0.0)) return -1;  // not drawn yet
+  return static_cast<int>(std::lround(left + (cursor_t_ - span_.start - axis->GetMinimum()) / range * (right - left)));
 }
 
 double SessionCharts::time_at(QPoint pixel) const {

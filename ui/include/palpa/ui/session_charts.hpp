@@ -1,14 +1,15 @@
 #pragma once
 // The review window's plots, drawn with VTK's charts (vtkContextView, vtkChartXY) in a
-// VtkView of their own: |F| (N, left axis) and the indentation depth (mm, right axis) over
+// VtkView of their own: the indentation depth (mm, left axis) and |F| (N, right axis) over
 // the whole session, the depth line coloured by the pressure level reached (light, medium,
 // deep: the case's thresholds over the local tissue thickness), the safety limit when the
 // force comes near it, a vertical marker at each Mark event and a cursor at the replay time.
 //
 // The series are built once; set_cursor() moves only the cursor's two points, so a replay
-// frame never rebuilds the chart. Each series is decimated to at most kMaxPoints by keeping
-// the smallest and the largest sample of each bucket, so peaks survive. A left click in
-// the plot area asks to seek there (seek_requested).
+// frame never rebuilds the chart, and redraws only when the cursor changes pixel column.
+// Each series is decimated to at most kMaxPoints by keeping the smallest and the largest
+// sample of each bucket (and the first and last), so peaks survive. A left click in the
+// plot area asks to seek there (seek_requested).
 #include <QWidget>
 #include <vtkSmartPointer.h>
 
@@ -43,6 +44,10 @@ class SessionCharts : public QWidget {
   void set_cursor(double t);
   /// Session time (s) of the cursor.
   double cursor_time() const { return cursor_t_; }
+  /// The cursor's column in the chart (device pixels from the left; -1 before the first
+  /// frame), and the column of the last frame drawn: the chart redraws only when it changes.
+  int cursor_pixel() const;
+  int drawn_cursor_pixel() const { return drawn_pixel_; }
   /// Session time (s) under a point of the view (widget pixels, y down); clamped to the
   /// time axis.
   double time_at(QPoint pixel) const;
@@ -70,13 +75,15 @@ class SessionCharts : public QWidget {
 
   session::TimeSpan span_;
   double cursor_t_ = 0.0;
-  double force_top_ = 1.0;  // N: the left axis' top, the markers' height
+  double force_top_ = 1.0;  // N: the force axis' top, the markers' height
+  int drawn_pixel_ = -1;
   VtkView* view_ = nullptr;
   QLabel* legend_ = nullptr;
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
   vtkSmartPointer<vtkContextView> context_;
   vtkSmartPointer<vtkChartXY> chart_;
   vtkSmartPointer<vtkTable> force_, depth_, marks_, cursor_, limit_;
+  vtkSmartPointer<vtkTable> level_segments_[4];  // the depth line's segments by pressure level
   unsigned long press_observer_ = 0;
 };
 
