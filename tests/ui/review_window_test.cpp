@@ -31,6 +31,8 @@
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
+#include <vtkContextInteractorStyle.h>
+#include <vtkRenderWindowInteractor.h>
 #include <vtkTable.h>
 
 namespace {
@@ -209,6 +211,17 @@ class ReviewWindowTest : public QObject {
     for (vtkIdType r = 0; r < depth->GetNumberOfRows(); ++r) max_depth = std::max(max_depth, depth->GetValue(r, 1).ToDouble());
     QVERIFY2(std::abs(max_force - w->score().peak_force_n) < 1e-9, qPrintable(QString::number(max_force)));
     QVERIFY2(std::abs(max_depth - peak_depth) < 1e-9, qPrintable(QString::number(max_depth)));
+    // Pressure levels: 0 exactly where the sample is out of contact; the deepest point of
+    // the expert's session is deep (the score has 94 % deep coverage).
+    vtkIdType deepest_row = 0;
+    for (vtkIdType r = 0; r < depth->GetNumberOfRows(); ++r) {
+      const auto& d = samples[palpa::session::sample_at(samples, depth->GetValue(r, 0).ToDouble() + start)];
+      const int level = depth->GetValue(r, 2).ToInt();
+      QVERIFY(level >= 0 && level <= 3);
+      QCOMPARE(level == 0, d.body < 0);
+      if (depth->GetValue(r, 1).ToDouble() > depth->GetValue(deepest_row, 1).ToDouble()) deepest_row = r;
+    }
+    QCOMPARE(depth->GetValue(deepest_row, 2).ToInt(), 3);
     // The first and last samples are in the force series, at times from the span's start.
     QCOMPARE(force->GetValue(0, 0).ToDouble(), samples.front().t - start);
     QCOMPARE(force->GetValue(force->GetNumberOfRows() - 1, 0).ToDouble(), samples.back().t - start);
@@ -236,6 +249,9 @@ class ReviewWindowTest : public QObject {
     w->show();
     QVERIFY(QTest::qWaitForWindowExposed(w.get()));
     auto* charts = w->charts();
+    // The chart's view is driven by VTK's context style (the chart's own interaction), not a
+    // camera style that would turn an invisible camera.
+    QVERIFY(vtkContextInteractorStyle::SafeDownCast(charts->view()->interactor()->GetInteractorStyle()) != nullptr);
     const auto rows_before = charts->force_table()->GetNumberOfRows();
     for (int value : {0, 3000, 7777, palpa::ui::ReviewWindow::kSliderSteps}) {
       w->scrubber()->setValue(value);
