@@ -33,6 +33,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/report/session_header.hpp"
 #include "palpa/report/session_report.hpp"
+#include "palpa/ui/session_charts.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::ui {
@@ -79,6 +80,9 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
   auto* left = new QVBoxLayout;
   view_ = new VtkView(central);
   left->addWidget(view_, 1);
+  charts_ = new SessionCharts(session_, score_, scene_.get(), span_, central);
+  charts_->setFixedHeight(230);
+  left->addWidget(charts_);
   auto* controls = new QHBoxLayout;
   play_button_ = new QPushButton(tr("Play"), central);
   speed_box_ = new QComboBox(central);
@@ -124,6 +128,7 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
   connect(scrubber_, &QSlider::valueChanged, this, [this](int value) {
     set_time(span_.start + (span_.end - span_.start) * value / static_cast<double>(kSliderSteps));
   });
+  connect(charts_, &SessionCharts::seek_requested, this, &ReviewWindow::set_time);
   connect(export_button, &QPushButton::clicked, this, &ReviewWindow::choose_export_folder);
   connect(&timer_, &QTimer::timeout, this, &ReviewWindow::frame);
 
@@ -256,6 +261,7 @@ void ReviewWindow::set_time(double t) {
                           .arg(s.body >= 0 ? QString() : tr("   (not in contact)")));
   }
   update_marks();
+  charts_->set_cursor(t_);  // moves the cursor only: the series stay as built
   render_window_->Render();
 }
 

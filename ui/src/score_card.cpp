@@ -2,11 +2,53 @@
 
 #include <QDialogButtonBox>
 #include <QFontDatabase>
+#include <QHBoxLayout>
+#include <QImage>
 #include <QLabel>
+#include <QPixmap>
 #include <QPlainTextEdit>
 #include <QVBoxLayout>
+#include <opencv2/core.hpp>
+
+#include "palpa/report/images.hpp"
 
 namespace palpa::ui {
+namespace {
+
+/// An 8-bit BGR image (the report's figures) as a QImage of its own (a deep copy).
+QImage to_qimage(const cv::Mat& bgr) {
+  if (bgr.empty() || bgr.type() != CV_8UC3) return {};
+  return QImage(bgr.data, bgr.cols, bgr.rows, static_cast<int>(bgr.step), QImage::Format_BGR888).copy();
+}
+
+/// A caption over a map scaled to the card's width; when the map cannot be drawn, the
+/// reason in its place (the text card stays usable).
+QLabel* add_map(QVBoxLayout* column, const QString& caption, cv::Mat (*draw)(const score::Score&),
+                const score::Score& score, QWidget* parent) {
+  auto* title = new QLabel(caption, parent);
+  QFont bold = title->font();
+  bold.setBold(true);
+  title->setFont(bold);
+  column->addWidget(title);
+  auto* map = new QLabel(parent);
+  QImage q;
+  try {
+    q = to_qimage(draw(score));
+  } catch (const std::exception& e) {
+    map->setText(QObject::tr("(map not drawn: %1)").arg(e.what()));
+    column->addWidget(map);
+    return map;
+  }
+  if (q.isNull()) {
+    map->setText(QObject::tr("(map not drawn)"));
+  } else {
+    map->setPixmap(QPixmap::fromImage(q.scaledToWidth(ScoreCard::kMapWidth, Qt::SmoothTransformation)));
+  }
+  column->addWidget(map);
+  return map;
+}
+
+}  // namespace
 
 ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWidget* parent) : QDialog(parent) {
   setWindowTitle(tr("Score card"));
@@ -28,11 +70,21 @@ ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWi
   title->setFont(big);
   title->setStyleSheet(score.passed ? "color: #1b7a2a" : "color: #a33");
   layout->addWidget(title);
+  auto* body = new QHBoxLayout;
   auto* card = new QPlainTextEdit(text_, this);
   card->setReadOnly(true);
   card->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
-  card->setMinimumSize(560, 360);
-  layout->addWidget(card);
+  card->setMinimumSize(520, 360);
+  body->addWidget(card, 1);
+  auto* maps = new QVBoxLayout;
+  // The report's own figures (OpenCV): the card and the exported HTML show the same maps.
+  coverage_ = add_map(maps, tr("Coverage: time spent over each part of the exam region"), &report::coverage_heatmap,
+                      score, this);
+  pressure_ = add_map(maps, tr("Pressure: deepest level reached (light, medium, deep)"), &report::pressure_map, score,
+                      this);
+  maps->addStretch(1);
+  body->addLayout(maps);
+  layout->addLayout(body, 1);
   layout->addWidget(new QLabel(tr("Session saved in %1. The tumours are shown in the view, with lines from your marks.")
                                    .arg(session_path),
                                this));

@@ -2,7 +2,9 @@
 // The review window: replays a recorded session over its case drawn at rest. The probe
 // path (in-contact samples, thinned), the fingertip at the current time, the marks
 // standing then, the tumours revealed; play/pause, speed, a scrubber, a readout of t, |F|
-// and depth; the session's metrics (score::score_session) and Export report.
+// and depth; plots of |F| and depth over the session with a cursor at t (SessionCharts,
+// VTK charts; a click there seeks); the session's metrics (score::score_session) and
+// Export report.
 #include <QElapsedTimer>
 #include <QMainWindow>
 #include <QString>
@@ -31,6 +33,7 @@ class vtkRenderer;
 
 namespace palpa::ui {
 
+class SessionCharts;
 class VtkView;
 
 class ReviewWindow : public QMainWindow {
@@ -62,6 +65,7 @@ class ReviewWindow : public QMainWindow {
   QTableWidget* metrics_table() const { return metrics_; }
   QLabel* readout() const { return readout_; }
   VtkView* view() const { return view_; }
+  SessionCharts* charts() const { return charts_; }
 
   /// Writes STEM.html, .json, .xapi.json, .csv into `dir` (STEM: the session file's stem);
   /// false (with the reason in the status bar) on failure.
@@ -91,6 +95,7 @@ class ReviewWindow : public QMainWindow {
   std::unique_ptr<BodySurfaces> surfaces_;
 
   VtkView* view_ = nullptr;
+  SessionCharts* charts_ = nullptr;
   QSlider* scrubber_ = nullptr;
   QPushButton* play_button_ = nullptr;
   QComboBox* speed_box_ = nullptr;

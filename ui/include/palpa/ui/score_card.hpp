@@ -1,8 +1,11 @@
 #pragma once
-// The score card after Finish: pass or fail, the gates and the metrics (score::summary_text),
-// and where the session was saved.
+// The score card after Finish: pass or fail, the gates and the metrics (score::summary_text)
+// beside the session's coverage heatmap and pressure map (the report's images, which reveal
+// the tumours with lines from the marks), and where the session was saved.
 #include <QDialog>
 #include <QString>
+
+class QLabel;
 
 #include "palpa/score/score.hpp"
 
@@ -15,8 +18,15 @@ class ScoreCard : public QDialog {
   /// The headline ("PASSED: 1 of 1 tumours found, 0 false marks") and the full card text.
   const QString& headline() const { return headline_; }
   const QString& text() const { return text_; }
+  /// The maps as shown (pixmaps, scaled to kMapWidth).
+  QLabel* coverage_map() const { return coverage_; }
+  QLabel* pressure_map() const { return pressure_; }
+
+  static constexpr int kMapWidth = 380;  ///< px
 
  private:
+  QLabel* coverage_ = nullptr;
+  QLabel* pressure_ = nullptr;
   QString headline_;
   QString text_;
 };
