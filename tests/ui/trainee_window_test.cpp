@@ -12,6 +12,7 @@
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
+#include <QWindow>
 #include <QWheelEvent>
 #include <QtTest>
 #include <functional>
@@ -24,6 +25,7 @@
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/vtk_view.hpp"
 #include "palpa/version.hpp"
 
 namespace {
@@ -59,12 +61,12 @@ palpa::trainer::Vec3 top_over_tumour(palpa::trainer::LiveExercise& live) {
   return hit ? hit->point : c;
 }
 
-void move_pointer(QWidget* view, const QPoint& at) {
+void move_pointer(QWindow* view, const QPoint& at) {
   QMouseEvent move(QEvent::MouseMove, at, view->mapToGlobal(at), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
   QApplication::sendEvent(view, &move);
 }
 
-void wheel(QWidget* view, const QPoint& at, int notches) {
+void wheel(QWindow* view, const QPoint& at, int notches) {
   QWheelEvent e(QPointF(at), QPointF(view->mapToGlobal(at)), QPoint(), QPoint(0, 120 * notches), Qt::NoButton,
                 Qt::NoModifier, Qt::NoScrollPhase, false);
   QApplication::sendEvent(view, &e);
@@ -129,8 +131,8 @@ class TraineeWindowTest : public QObject {
 
     const QPoint at = window.to_view(top_over_tumour(window.exercise()));
     QVERIFY(view->rect().contains(at));
-    move_pointer(view, at);
-    wheel(view, at, 6);  // 4 mm + 6 notches of 1 mm
+    move_pointer(view->input(), at);
+    wheel(view->input(), at, 6);  // 4 mm + 6 notches of 1 mm
     QCOMPARE(window.press_depth(), 0.010);
     QVERIFY2(wait_for([&] { return window.gauge()->contact().force > 1.0; }),
              qPrintable(window.gauge()->text()));
@@ -154,9 +156,9 @@ class TraineeWindowTest : public QObject {
     QTest::qWait(100);
     auto* view = window.view();
     const QPoint at = window.to_view(top_over_tumour(window.exercise()));
-    move_pointer(view, at);
+    move_pointer(view->input(), at);
     QVERIFY(wait_for([&] { return window.gauge()->contact().force > 1.0; }));
-    QTest::keyClick(view, Qt::Key_M);
+    QTest::keyClick(view->input(), Qt::Key_M);
     auto* marks = window.findChild<QListWidget*>();
     QVERIFY(marks);
     QCOMPARE(marks->count(), 1);

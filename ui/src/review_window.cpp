@@ -16,7 +16,6 @@
 #include <QStatusBar>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -34,6 +33,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/report/session_header.hpp"
 #include "palpa/report/session_report.hpp"
+#include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -77,7 +77,7 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
   auto* central = new QWidget(this);
   auto* layout = new QHBoxLayout(central);
   auto* left = new QVBoxLayout;
-  view_ = new QVTKOpenGLNativeWidget(central);
+  view_ = new VtkView(central);
   left->addWidget(view_, 1);
   auto* controls = new QHBoxLayout;
   play_button_ = new QPushButton(tr("Play"), central);

@@ -15,7 +15,6 @@
 #include <QPushButton>
 #include <QStatusBar>
 #include <QVBoxLayout>
-#include <QVTKOpenGLNativeWidget.h>
 #include <QWheelEvent>
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -30,6 +29,7 @@
 
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
+#include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -77,10 +77,9 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
 
   auto* central = new QWidget(this);
   auto* layout = new QHBoxLayout(central);
-  view_ = new QVTKOpenGLNativeWidget(central);
-  view_->setMouseTracking(true);  // the pointer palpates without a button held
-  view_->setFocusPolicy(Qt::StrongFocus);
-  view_->installEventFilter(this);
+  view_ = new VtkView(central);
+  // The pointer palpates without a button held: a native window gets every move.
+  view_->input()->installEventFilter(this);
   layout->addWidget(view_, 1);
 
   auto* side = new QVBoxLayout;
@@ -363,7 +362,7 @@ void TraineeWindow::update_status() {
 }
 
 bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
-  if (watched != view_) return QMainWindow::eventFilter(watched, event);
+  if (watched != view_->input()) return QMainWindow::eventFilter(watched, event);
   switch (event->type()) {
     case QEvent::MouseMove: {
       auto* e = static_cast<QMouseEvent*>(event);

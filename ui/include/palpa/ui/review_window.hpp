@@ -25,12 +25,13 @@ class QListWidget;
 class QPushButton;
 class QSlider;
 class QTableWidget;
-class QVTKOpenGLNativeWidget;
 class vtkActor;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
 
 namespace palpa::ui {
+
+class VtkView;
 
 class ReviewWindow : public QMainWindow {
   Q_OBJECT
@@ -60,7 +61,7 @@ class ReviewWindow : public QMainWindow {
   QComboBox* speed_box() const { return speed_box_; }
   QTableWidget* metrics_table() const { return metrics_; }
   QLabel* readout() const { return readout_; }
-  QVTKOpenGLNativeWidget* view() const { return view_; }
+  VtkView* view() const { return view_; }
 
   /// Writes STEM.html, .json, .xapi.json, .csv into `dir` (STEM: the session file's stem);
   /// false (with the reason in the status bar) on failure.
@@ -89,7 +90,7 @@ class ReviewWindow : public QMainWindow {
   std::unique_ptr<trainer::DisplayMeshes> meshes_;
   std::unique_ptr<BodySurfaces> surfaces_;
 
-  QVTKOpenGLNativeWidget* view_ = nullptr;
+  VtkView* view_ = nullptr;
   QSlider* scrubber_ = nullptr;
   QPushButton* play_button_ = nullptr;
   QComboBox* speed_box_ = nullptr;

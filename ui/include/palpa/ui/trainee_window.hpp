@@ -22,12 +22,13 @@
 class QLabel;
 class QListWidget;
 class QPushButton;
-class QVTKOpenGLNativeWidget;
 class vtkActor;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
 
 namespace palpa::ui {
+
+class VtkView;
 
 class ForceGauge;
 class ScoreCard;
@@ -42,7 +43,7 @@ class TraineeWindow : public QMainWindow {
   ~TraineeWindow() override;
 
   trainer::LiveExercise& exercise() { return *exercise_; }
-  QVTKOpenGLNativeWidget* view() const { return view_; }
+  VtkView* view() const { return view_; }
   ForceGauge* gauge() const { return gauge_; }
   BodySurfaces& surfaces() { return *surfaces_; }
   /// Where a scene point (m) appears in the view (widget pixels).
@@ -89,7 +90,7 @@ class TraineeWindow : public QMainWindow {
   void update_target();
 
   std::unique_ptr<trainer::LiveExercise> exercise_;
-  QVTKOpenGLNativeWidget* view_ = nullptr;
+  VtkView* view_ = nullptr;
   ForceGauge* gauge_ = nullptr;
   QLabel* depth_label_ = nullptr;
   QListWidget* marks_list_ = nullptr;
