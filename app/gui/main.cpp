@@ -1,5 +1,6 @@
 // palpa: the Palpa application. Trainee mode: palpate a case with the mouse, mark what you
-// find, finish for the score card. Review mode: replay a recorded session with its metrics. Options are parsed before any window exists, so
+// find, finish for the score card. Instructor mode: author a case (presets, tumours,
+// randomization, stiffness maps) and try it. Review mode: replay a recorded session with its metrics. Options are parsed before any window exists, so
 // --help, --version and a bad case file answer without a display.
 #include <chrono>
 #include <cstdio>
@@ -17,10 +18,12 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include "frame_bench.hpp"
+#include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/screenshot.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -102,6 +105,41 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
   }
 }
 
+// palpa --mode instructor [--case FILE]: a file that cannot be read or is not JSON answers
+// with one line and exit 2 before any window exists; a JSON file that is not a valid case
+// opens with its problems listed, to be fixed.
+int run_instructor(int argc, char** argv, const std::string& case_path, const std::string& screenshot) {
+  palpa::author::CaseDraft draft;  // default: a new breast preset
+  if (!case_path.empty()) {
+    try {
+      draft = palpa::author::CaseDraft::load(case_path);
+    } catch (const palpa::io::CaseError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return kBadInput;
+    }
+  }
+  init_gui_format();
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("palpa");
+  QApplication::setApplicationVersion(palpa::kVersion);
+  try {
+    palpa::ui::InstructorWindow window(std::move(draft));
+    window.set_sessions_dir(default_session_path().parent_path());
+    if (!screenshot.empty()) {
+      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
+        print_error(screenshot + ": could not write the screenshot");
+        return kFailure;
+      }
+      return kOk;
+    }
+    window.show();
+    return QApplication::exec();
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,8 +155,9 @@ int main(int argc, char** argv) {
                "palpa"};
   cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
   cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
-  cli.add_option("--mode", mode, "trainee or review (instructor is planned)")
-      ->check(CLI::IsMember({"trainee", "review"}));
+  cli.add_option("--mode", mode,
+                 "trainee, instructor (author a case: --case FILE to edit, default a new breast) or review")
+      ->check(CLI::IsMember({"trainee", "instructor", "review"}));
   cli.add_option("--session", session_path,
                  "trainee: session file to record (never overwritten; default "
                  "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
@@ -167,6 +206,13 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
   if (mode == "review") return run_review(argc, argv, session_path, screenshot);
+  if (mode == "instructor") {
+    if (!session_path.empty() || !trainee.empty() || seed) {
+      print_error("--session, --trainee and --seed go with trainee mode (see palpa --help)");
+      return kBadInput;
+    }
+    return run_instructor(argc, argv, cli.count("--case") > 0 ? case_path : std::string(), screenshot);
+  }
 
   if (trainee.empty()) {
     const char* user = std::getenv("USER");
