@@ -264,12 +264,12 @@ void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
 void InstructorWindow::frame_camera() {
   auto* camera = renderer_->GetActiveCamera();
   camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetPosition(0.0, -0.7, 1.0);  // from the front and well above: the skin is where tumours go
+  camera->SetPosition(0.0, -1.0, 0.75);  // from the front and above: the skin and the dome's profile
   camera->SetViewUp(0.0, 0.0, 1.0);
   if (scene_->has_bodies()) {
     auto b = scene_->bounds();
     renderer_->ResetCamera(b.data());
-    camera->Zoom(1.1);
+    camera->Zoom(1.3);
     renderer_->ResetCameraClippingRange(b.data());
   }
   render();
