@@ -92,7 +92,13 @@ InstructorScene::InstructorScene(vtkRenderer* bodies, vtkRenderer* overlay) : bo
   legend_->GetPositionCoordinate()->SetValue(0.88, 0.1);
   legend_->SetWidth(0.1);
   legend_->SetHeight(0.8);
-  legend_->GetTitleTextProperty()->SetFontSize(14);
+  legend_->UnconstrainedFontSizeOn();
+  for (auto* text : {legend_->GetTitleTextProperty(), legend_->GetLabelTextProperty()}) {
+    text->SetFontSize(13);
+    text->ItalicOff();
+    text->BoldOff();
+    text->ShadowOff();
+  }
   legend_->VisibilityOff();
   bodies_->AddActor2D(legend_);
 }
