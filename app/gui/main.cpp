@@ -1,7 +1,9 @@
 // palpa: the Palpa application. Trainee mode: palpate a case with the mouse, mark what you
 // find, finish for the score card. Instructor mode: author a case (presets, tumours,
-// randomization, stiffness maps) and try it. Review mode: replay a recorded session with its metrics. Options are parsed before any window exists, so
-// --help, --version and a bad case file answer without a display.
+// randomization, stiffness maps) and try it. Review mode: replay a recorded session with its
+// metrics. Options and the first file are checked before any window exists, so --help,
+// --version and a bad case or session answer without a display; later files come from
+// the windows' File menu (AppWindows).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +19,9 @@
 #include <QSurfaceFormat>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include "app_windows.hpp"
 #include "frame_bench.hpp"
+#include "quit_on_signal.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
@@ -35,24 +39,6 @@ enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
 
 void print_error(const std::string& message) { std::fprintf(stderr, "palpa: error: %s\n", message.c_str()); }
 
-std::string utc_stamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
-  return text;
-}
-
-std::filesystem::path default_session_path() {
-  const char* data = std::getenv("XDG_DATA_HOME");
-  const char* home = std::getenv("HOME");
-  std::filesystem::path base = data && *data ? std::filesystem::path(data)
-                               : home && *home ? std::filesystem::path(home) / ".local" / "share"
-                                               : std::filesystem::temp_directory_path();
-  return base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + ".palpa");
-}
-
 void init_gui_format() {
   // VTK's OpenGL needs this format on every Qt GL surface: set before QApplication exists.
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
@@ -60,7 +46,8 @@ void init_gui_format() {
 
 // palpa --mode review --session FILE: the session is read and scored before any window
 // exists, so a bad file answers with one line and exit 2 (like palpa-cli score).
-int run_review(int argc, char** argv, const std::string& session_path, const std::string& screenshot) {
+int run_review(int argc, char** argv, const std::string& session_path, const std::string& screenshot,
+               const palpa::gui::TraineeSettings& settings) {
   if (session_path.empty()) {
     print_error("--mode review needs --session FILE (see palpa --help)");
     return kBadInput;
@@ -85,8 +72,8 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
   QApplication::setApplicationName("palpa");
   QApplication::setApplicationVersion(palpa::kVersion);
   try {
-    palpa::ui::ReviewWindow window(std::move(session), std::move(score), session_path);
     if (!screenshot.empty()) {
+      palpa::ui::ReviewWindow window(std::move(session), std::move(score), session_path);
       window.set_time(window.span().end);  // the whole exam: every mark standing at the end
       if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
         print_error(screenshot + ": could not write the screenshot");
@@ -94,7 +81,11 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
       }
       return kOk;
     }
-    window.show();
+    palpa::gui::AppWindows windows(settings);
+    auto* window = new palpa::ui::ReviewWindow(std::move(session), std::move(score), session_path);
+    windows.adopt(*window);
+    window->show();
+    palpa::gui::quit_on_signals();
     return QApplication::exec();
   } catch (const palpa::io::CaseError& e) {
     print_error(e.what());
@@ -108,7 +99,8 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
 // palpa --mode instructor [--case FILE]: a file that cannot be read or is not JSON answers
 // with one line and exit 2 before any window exists; a JSON file that is not a valid case
 // opens with its problems listed, to be fixed.
-int run_instructor(int argc, char** argv, const std::string& case_path, const std::string& screenshot) {
+int run_instructor(int argc, char** argv, const std::string& case_path, const std::string& screenshot,
+                   const palpa::gui::TraineeSettings& settings) {
   palpa::author::CaseDraft draft;  // default: a new breast preset
   if (!case_path.empty()) {
     try {
@@ -123,16 +115,20 @@ int run_instructor(int argc, char** argv, const std::string& case_path, const st
   QApplication::setApplicationName("palpa");
   QApplication::setApplicationVersion(palpa::kVersion);
   try {
-    palpa::ui::InstructorWindow window(std::move(draft));
-    window.set_sessions_dir(default_session_path().parent_path());
     if (!screenshot.empty()) {
+      palpa::ui::InstructorWindow window(std::move(draft));
       if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
         print_error(screenshot + ": could not write the screenshot");
         return kFailure;
       }
       return kOk;
     }
-    window.show();
+    palpa::gui::AppWindows windows(settings);
+    auto* window = new palpa::ui::InstructorWindow(std::move(draft));
+    window->set_sessions_dir(palpa::gui::default_session_path().parent_path());
+    windows.adopt(*window);
+    window->show();
+    palpa::gui::quit_on_signals();
     return QApplication::exec();
   } catch (const std::exception& e) {
     print_error(e.what());
@@ -156,7 +152,7 @@ int main(int argc, char** argv) {
   cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
   cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
   cli.add_option("--mode", mode,
-                 "trainee, instructor (author a case: --case FILE to edit, default a new breast) or review")
+                 "trainee, instructor (author a case: --case FILE to edit it, default a new breast) or review")
       ->check(CLI::IsMember({"trainee", "instructor", "review"}));
   cli.add_option("--session", session_path,
                  "trainee: session file to record (never overwritten; default "
@@ -205,19 +201,22 @@ int main(int argc, char** argv) {
     print_error("--seconds, --csv and --max-bodies go with --bench (see palpa --help)");
     return kBadInput;
   }
-  if (mode == "review") return run_review(argc, argv, session_path, screenshot);
-  if (mode == "instructor") {
-    if (!session_path.empty() || !trainee.empty() || seed) {
-      print_error("--session, --trainee and --seed go with trainee mode (see palpa --help)");
-      return kBadInput;
-    }
-    return run_instructor(argc, argv, cli.count("--case") > 0 ? case_path : std::string(), screenshot);
-  }
-
   if (trainee.empty()) {
     const char* user = std::getenv("USER");
     trainee = user && *user ? user : "trainee";
   }
+  // What every trainee window opened from a File menu uses (a fresh seed and session
+  // file per exercise unless --seed is given).
+  const palpa::gui::TraineeSettings settings{trainee, seed, {}};
+  if (mode == "review") return run_review(argc, argv, session_path, screenshot, settings);
+  if (mode == "instructor") {
+    if (!session_path.empty()) {
+      print_error("--session goes with trainee or review mode; \"Try it\" records in the default sessions folder");
+      return kBadInput;
+    }
+    return run_instructor(argc, argv, cli.count("--case") > 0 ? case_path : std::string(), screenshot, settings);
+  }
+
   palpa::trainer::LiveOptions options;
   options.trainee = trainee;
   options.mode = mode;
@@ -227,7 +226,8 @@ int main(int argc, char** argv) {
     std::random_device entropy;
     options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
   }
-  options.session_path = session_path.empty() ? default_session_path() : std::filesystem::path(session_path);
+  options.session_path =
+      session_path.empty() ? palpa::gui::default_session_path() : std::filesystem::path(session_path);
   if (screenshot.empty() && std::filesystem::exists(options.session_path)) {
     print_error(options.session_path.string() + ": file: exists (a session is never overwritten)");
     return kBadInput;
@@ -256,16 +256,20 @@ int main(int argc, char** argv) {
   QApplication::setApplicationVersion(palpa::kVersion);
   try {
     const QString name = QString::fromStdString(std::filesystem::path(case_path).filename().string());
-    palpa::ui::TraineeWindow window(std::move(exercise), name, screenshot.empty());
     if (!screenshot.empty()) {
+      palpa::ui::TraineeWindow window(std::move(exercise), name, false);
       if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
         print_error(screenshot + ": could not write the screenshot");
         return kFailure;
       }
       return kOk;
     }
-    window.show();
-    std::fprintf(stderr, "palpa: recording the session in %s\n", window.exercise().session_path().c_str());
+    palpa::gui::AppWindows windows(settings);
+    auto* window = new palpa::ui::TraineeWindow(std::move(exercise), name);
+    windows.adopt(*window);
+    window->show();
+    palpa::gui::quit_on_signals();
+    std::fprintf(stderr, "palpa: recording the session in %s\n", window->exercise().session_path().c_str());
     return QApplication::exec();
   } catch (const std::exception& e) {
     print_error(e.what());

@@ -41,6 +41,8 @@ class FrameBench(unittest.TestCase):
             # fps p5 is by definition 1 / p95 frame time (both rounded in the CSV)
             self.assertAlmostEqual(float(r["fps_p5"]), 1000.0 / float(r["frame_p95_ms"]), delta=0.1)
             self.assertGreater(float(r["bodies_changed_per_frame"]), 0.0, r)  # the finger deformed the body
+            self.assertEqual(r["view"], "all", r)
+            self.assertEqual(float(r["bodies_drawn_per_frame"]), 1.0, r)  # one body, in view: never culled
             self.assertGreater(float(r["cpu_ms_per_frame"]), 0.0, r)
             self.assertGreater(int(r["haptic_ticks"]), 0, r)
             self.assertLessEqual(int(r["haptic_missed"]), int(r["haptic_ticks"]), r)

@@ -17,7 +17,9 @@
 #include <QtTest>
 #include <functional>
 #include <memory>
+#include <vtkCamera.h>
 #include <vtkPoints.h>
+#include <vtkRenderer.h>
 #include <vtkPolyData.h>
 
 #include "palpa/io/case_file.hpp"
@@ -178,6 +180,35 @@ class TraineeWindowTest : public QObject {
              qPrintable(window.score_card()->headline()));
     QVERIFY(window.score_card()->text().contains("sensitivity"));
     QVERIFY(!finish->isEnabled());
+  }
+
+  void bodiesOutOfViewAreCulled() {
+    // Two bodies side by side (x < -0.02 m and x > 0.02 m): with the camera close on the
+    // left one, the right one is neither re-tessellated nor drawn; back in view, it is again.
+    QTemporaryDir dir;
+    palpa::trainer::LiveOptions o;
+    o.trainee = "ui-test";
+    o.session_path = dir.filePath("cull.palpa").toStdString();
+    o.realtime.request_fifo = false;
+    const std::string two = PALPA_SOURCE_DIR "/data/cases/two-bodies.json";
+    palpa::ui::TraineeWindow window(
+        std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(two), two, o), "two-bodies.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.frame();
+    QCOMPARE(window.last_frame().bodies_drawn, std::size_t{2});
+    window.look_at_body(0);
+    window.renderer()->GetActiveCamera()->Zoom(2.0);
+    window.frame();
+    QCOMPARE(window.last_frame().bodies_drawn, std::size_t{1});
+    QVERIFY(window.exercise().meshes().visible(0));
+    QVERIFY(!window.exercise().meshes().visible(1));
+    window.look_at_body(1);
+    window.renderer()->GetActiveCamera()->Zoom(2.0);
+    window.frame();
+    QCOMPARE(window.last_frame().bodies_drawn, std::size_t{1});
+    QVERIFY(window.exercise().meshes().visible(1));
+    QVERIFY(!window.exercise().meshes().visible(0));
   }
 
   void screenshotShowsTheBody() {

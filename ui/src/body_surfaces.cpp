@@ -35,6 +35,10 @@ BodySurfaces::BodySurfaces(const trainer::DisplayMeshes& meshes, vtkRenderer* re
     } else {
       property->SetColor(0.70, 0.52, 0.46);
     }
+    // A body is closed (top and bottom meet on the skeleton's boundary) and both contours
+    // wind counter-clockwise seen from outside, so a back face is never seen: skipping
+    // them cuts a quarter of a frame's CPU with software OpenGL (palpa --bench).
+    property->BackfaceCullingOn();
     property->SetSpecular(0.25);
     property->SetSpecularPower(20.0);
     renderer->AddActor(s.actor);
@@ -75,6 +79,11 @@ std::size_t BodySurfaces::sync(const trainer::DisplayMeshes& meshes, bool all) {
     ++copied;
   }
   return copied;
+}
+
+void BodySurfaces::set_visible(std::size_t body, bool visible) {
+  surfaces_[2 * body].actor->SetVisibility(visible);
+  surfaces_[2 * body + 1].actor->SetVisibility(visible);
 }
 
 void BodySurfaces::set_opacity(double opacity) {

@@ -140,7 +140,9 @@ void InstructorWindow::build_view() {
 }
 
 void InstructorWindow::build_actions() {
-  auto* file = menuBar()->addMenu(tr("&File"));
+  // "Case": the application's own File menu (ui::ModeMenu, added by app/gui) opens other
+  // windows; this one edits the case in this window.
+  auto* file = menuBar()->addMenu(tr("&Case"));
   auto* new_menu = file->addMenu(tr("&New"));
   for (auto p : {author::Preset::Breast, author::Preset::Prostate, author::Preset::Patch, author::Preset::Slab}) {
     new_menu->addAction(tr(author::label(p)), this, [this, p] {
@@ -160,7 +162,6 @@ void InstructorWindow::build_actions() {
   auto* save_as_action = file->addAction(tr("Save &As..."), this, &InstructorWindow::save_as_dialog);
   save_as_action->setShortcut(QKeySequence::SaveAs);
   file->addSeparator();
-  file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
 
   auto* edit_menu = menuBar()->addMenu(tr("&Edit"));
   undo_ = edit_menu->addAction(tr("&Undo"), this, &InstructorWindow::undo);
@@ -173,10 +174,9 @@ void InstructorWindow::build_actions() {
   overlay_->setCheckable(true);
   connect(overlay_, &QAction::toggled, this, &InstructorWindow::set_stiffness_overlay);
 
-  auto* tools = menuBar()->addMenu(tr("&Case"));
-  tools->addAction(tr("Import stiffness &map..."), this, &InstructorWindow::import_dialog);
-  auto* try_action = tools->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
-  try_action->setShortcut(QKeySequence(QStringLiteral("Ctrl+T")));
+  file->addAction(tr("Import stiffness &map..."), this, &InstructorWindow::import_dialog);
+  auto* try_action = file->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
+  try_action->setShortcut(QKeySequence(QStringLiteral("F5")));  // Ctrl+T is the File menu's "Train on a case"
 
   auto* bar = addToolBar(tr("Edit"));
   bar->setObjectName("instructorToolbar");
@@ -185,8 +185,6 @@ void InstructorWindow::build_actions() {
   bar->addSeparator();
   bar->addAction(overlay_);
   bar->addAction(try_action);
-  // The shortcuts work wherever the focus is, the 3D view included.
-  for (auto* a : {undo_, redo_, try_action}) a->setShortcutContext(Qt::ApplicationShortcut);
 }
 
 void InstructorWindow::edit(const std::function<void()>& op) {

@@ -1,5 +1,6 @@
 #include "palpa/ui/trainee_window.hpp"
 
+#include <array>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +28,7 @@
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
 
+#include "palpa/render/frustum.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/vtk_view.hpp"
@@ -300,6 +302,36 @@ void TraineeWindow::reveal(const score::Score& score) {
   render_window_->Render();
 }
 
+std::size_t TraineeWindow::cull_bodies() {
+  std::array<double, 24> planes{};
+  renderer_->GetActiveCamera()->GetFrustumPlanes(renderer_->GetTiledAspectRatio(), planes.data());
+  const render::Frustum frustum(planes);
+  const auto& scene = exercise_->scene();
+  std::size_t drawn = 0;
+  for (std::size_t b = 0; b < scene.size(); ++b) {
+    // The rest box already allows the largest radius on every side of the skeleton's
+    // control points; a press moves the drawn contours inwards, and the oscillators
+    // overshoot by a few per cent of the press: a tenth of the diagonal is a safe margin.
+    const auto& box = scene.body(b).bounds;
+    const trainer::Vec3 pad = trainer::Vec3::Constant(0.1 * (box.hi - box.lo).norm());
+    const bool visible = frustum.may_see(box.lo - pad, box.hi + pad);
+    if (visible != exercise_->meshes().visible(b)) {
+      exercise_->set_body_visible(b, visible);
+      surfaces_->set_visible(b, visible);
+    }
+    drawn += visible ? 1 : 0;
+  }
+  return drawn;
+}
+
+void TraineeWindow::look_at_body(std::size_t body) {
+  const auto& box = exercise_->scene().body(body).bounds;
+  double bounds[6] = {box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z()};
+  renderer_->ResetCamera(bounds);
+  renderer_->GetActiveCamera()->Zoom(2.5);  // the body's middle fills the view
+  renderer_->ResetCameraClippingRange();
+}
+
 void TraineeWindow::set_frame_interval(int ms) {
   if (ms < 0) {
     timer_.stop();
@@ -314,6 +346,7 @@ void TraineeWindow::frame() {
   auto t0 = Clock::now();
   auto t1 = t0, t2 = t0;
   last_frame_.bodies_changed = 0;
+  last_frame_.bodies_drawn = cull_bodies();
   if (exercise_->started() && !exercise_->finished()) {
     exercise_->update();
     t1 = Clock::now();

@@ -9,7 +9,7 @@ DisplayMeshes::DisplayMeshes(const scene::Scene& scene, const render::Tessellati
   bodies_.reserve(scene.size());
   for (std::size_t b = 0; b < scene.size(); ++b) {
     const auto& rest = scene.body(b).body;
-    bodies_.push_back(Body{rest.top(), rest.bottom(), {}, {}, 0, true});
+    bodies_.push_back(Body{rest.top(), rest.bottom(), {}, {}, 0, true, true});
     render::tessellate(bodies_.back().top, options_, false, bodies_.back().top_mesh);
     render::tessellate(bodies_.back().bottom, options_, true, bodies_.back().bottom_mesh);
   }
@@ -37,7 +37,7 @@ std::size_t DisplayMeshes::update(const engine::SceneSnapshot& snapshot) {
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     auto& body = bodies_[b];
     body.changed = false;
-    if (b >= snapshot.bodies.size()) continue;
+    if (!body.visible || b >= snapshot.bodies.size()) continue;
     const auto& shot = snapshot.bodies[b];
     // ~0 marks a snapshot slot never filled by the haptic thread (SceneSnapshot::sized_for).
     if (shot.version == body.version || shot.version == ~std::uint64_t{0}) continue;

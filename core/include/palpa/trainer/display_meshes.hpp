@@ -16,10 +16,16 @@ class DisplayMeshes {
   /// Starts with every body at rest, tessellated. The scene must outlive this.
   explicit DisplayMeshes(const scene::Scene& scene, const render::TessellationOptions& options = {});
 
-  /// Copies the control points of every body whose snapshot version differs from the last
-  /// one taken and re-tessellates it; returns how many bodies changed (changed(b) says
-  /// which). Allocation-free once the meshes have the capacity for their grids.
+  /// Copies the control points of every visible body whose snapshot version differs from
+  /// the last one taken and re-tessellates it; returns how many bodies changed (changed(b)
+  /// says which). A body set invisible keeps its old meshes and catches up on the first
+  /// update after it is visible again. Allocation-free once the meshes have the capacity
+  /// for their grids.
   std::size_t update(const engine::SceneSnapshot& snapshot);
+
+  /// Off-screen culling: the GUI says which bodies its camera can see (all at first).
+  void set_visible(std::size_t body, bool visible) { bodies_[body].visible = visible; }
+  bool visible(std::size_t body) const { return bodies_[body].visible; }
 
   std::size_t size() const { return bodies_.size(); }
   const render::Mesh& top(std::size_t body) const { return bodies_[body].top_mesh; }
@@ -35,6 +41,7 @@ class DisplayMeshes {
     render::Mesh top_mesh, bottom_mesh;
     std::uint64_t version = 0;
     bool changed = false;
+    bool visible = true;
   };
   std::vector<Body> bodies_;
   render::TessellationOptions options_;

@@ -82,6 +82,8 @@ class LiveExercise {
   const engine::SceneSnapshot& snapshot() const { return loop_->snapshot(); }
   /// The drawn bodies as of the last update() (at rest before start()).
   const DisplayMeshes& meshes() const { return meshes_; }
+  /// Off-screen culling: update() skips bodies the view cannot see (DisplayMeshes::set_visible).
+  void set_body_visible(std::size_t body, bool visible) { meshes_.set_visible(body, visible); }
   /// Picks the rest top contour under a pointer ray (see surface_pick.hpp).
   std::optional<SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
     return picker_.pick(origin, direction);

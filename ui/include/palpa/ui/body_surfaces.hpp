@@ -27,6 +27,8 @@ class BodySurfaces {
   /// Copies the meshes of the bodies that changed in the last DisplayMeshes::update
   /// (all of them when `all`); returns how many bodies were copied.
   std::size_t sync(const trainer::DisplayMeshes& meshes, bool all = false);
+  /// Off-screen culling: hides (or shows) both contours of a body.
+  void set_visible(std::size_t body, bool visible);
   /// 1: opaque; lower to see the tumours inside.
   void set_opacity(double opacity);
   /// The top contour's data of a body (tests read its points).

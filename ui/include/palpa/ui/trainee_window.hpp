@@ -46,6 +46,7 @@ class TraineeWindow : public QMainWindow {
   VtkView* view() const { return view_; }
   ForceGauge* gauge() const { return gauge_; }
   BodySurfaces& surfaces() { return *surfaces_; }
+  vtkRenderer* renderer() const { return renderer_; }
   /// Where a scene point (m) appears in the view (widget pixels).
   QPoint to_view(const trainer::Vec3& point) const;
   /// The current press depth (m) set by the wheel or the keys.
@@ -63,8 +64,12 @@ class TraineeWindow : public QMainWindow {
     double upload = 0.0;
     double render = 0.0;
     std::size_t bodies_changed = 0;
+    std::size_t bodies_drawn = 0;  ///< in the camera's view (the rest are culled)
   };
   const FrameTimes& last_frame() const { return last_frame_; }
+  /// Points the camera at one body, close enough that its middle fills the view (palpa
+  /// --bench measures the culling of the others this way).
+  void look_at_body(std::size_t body);
   /// Milliseconds between timed frames (16 by default, ~60 Hz); 0 draws whenever the event
   /// loop is idle; a negative value stops the timer (a driver then calls frame() itself).
   void set_frame_interval(int ms);
@@ -88,6 +93,9 @@ class TraineeWindow : public QMainWindow {
   void update_status();
   void reveal(const score::Score& score);
   void update_target();
+  /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
+  /// box grown by a margin for deformation); returns how many are visible.
+  std::size_t cull_bodies();
 
   std::unique_ptr<trainer::LiveExercise> exercise_;
   VtkView* view_ = nullptr;

@@ -1,0 +1,153 @@
+#include "app_windows.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
+#include <memory>
+#include <random>
+
+#include <QMainWindow>
+#include <QAction>
+#include <QMessageBox>
+
+#include "palpa/author/case_draft.hpp"
+#include "palpa/io/case_file.hpp"
+#include "palpa/score/score.hpp"
+#include "palpa/session/session.hpp"
+#include "palpa/session/session_reader.hpp"
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/instructor_window.hpp"
+#include "palpa/ui/mode_menu.hpp"
+#include "palpa/ui/review_window.hpp"
+#include "palpa/ui/trainee_window.hpp"
+
+namespace palpa::gui {
+
+namespace {
+
+std::string utc_stamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
+  return text;
+}
+
+std::uint64_t fresh_seed() {
+  std::random_device entropy;
+  return (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+}
+
+QString file_name(const QString& path) { return QString::fromStdString(std::filesystem::path(path.toStdString()).filename().string()); }
+
+}  // namespace
+
+std::filesystem::path default_session_path() {
+  const char* data = std::getenv("XDG_DATA_HOME");
+  const char* home = std::getenv("HOME");
+  std::filesystem::path base = data && *data ? std::filesystem::path(data)
+                               : home && *home ? std::filesystem::path(home) / ".local" / "share"
+                                               : std::filesystem::temp_directory_path();
+  auto path = base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + ".palpa");
+  // Two exercises started in the same second must not share a file.
+  for (int k = 2; std::filesystem::exists(path); ++k) {
+    path = base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + "-" + std::to_string(k) + ".palpa");
+  }
+  return path;
+}
+
+AppWindows::AppWindows(TraineeSettings settings) : settings_(std::move(settings)) {}
+
+void AppWindows::fail(const QString& line, QWidget* parent) {
+  last_error_ = line;
+  if (parent) {
+    QMessageBox::warning(parent, tr("Palpa"), line);
+  } else {
+    std::fprintf(stderr, "palpa: error: %s\n", line.toLocal8Bit().constData());
+  }
+}
+
+void AppWindows::adopt(QMainWindow& window) {
+  window.setAttribute(Qt::WA_DeleteOnClose);
+  auto* menu = new ui::ModeMenu(window);
+  connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
+  connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
+  connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
+}
+
+QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent) {
+  last_error_.clear();
+  trainer::LiveOptions options;
+  options.trainee = settings_.trainee;
+  options.mode = "trainee";
+  options.seed = settings_.seed ? *settings_.seed : fresh_seed();
+  options.session_path = first_trainee_ && !settings_.first_session.empty() ? settings_.first_session
+                                                                            : default_session_path();
+  try {
+    if (std::filesystem::exists(options.session_path)) {
+      fail(QString::fromStdString(options.session_path.string() + ": file: exists (a session is never overwritten)"),
+           parent);
+      return nullptr;
+    }
+    const std::string source = case_path.toStdString();
+    auto exercise = std::make_unique<trainer::LiveExercise>(io::load_case(source), source, options);
+    auto* window = new ui::TraineeWindow(std::move(exercise), file_name(case_path));
+    first_trainee_ = false;
+    adopt(*window);
+    window->show();
+    std::fprintf(stderr, "palpa: recording the session in %s\n", options.session_path.c_str());
+    return window;
+  } catch (const io::CaseError& e) {
+    QString line = QString::fromStdString(e.what());
+    if (e.problems().size() > 1) {
+      line += tr(" (and %1 more: palpa-cli validate lists them)").arg(e.problems().size() - 1);
+    }
+    fail(line, parent);
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  }
+  return nullptr;
+}
+
+QMainWindow* AppWindows::open_review(const QString& session_path, QWidget* parent) {
+  last_error_.clear();
+  const std::string path = session_path.toStdString();
+  try {
+    session::Session session = session::read_session(path);
+    score::Score score = score::score_session(session, path);
+    auto* window = new ui::ReviewWindow(std::move(session), std::move(score), path);
+    adopt(*window);
+    window->show();
+    return window;
+  } catch (const session::SessionError& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  } catch (const io::CaseError& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(path + ": " + e.what()), parent);
+  }
+  return nullptr;
+}
+
+QMainWindow* AppWindows::open_instructor(const QString& case_path, QWidget* parent) {
+  last_error_.clear();
+  try {
+    // A case that is JSON but not valid opens with its problems listed; only a file that
+    // cannot be read or is not JSON is refused.
+    auto draft = case_path.isEmpty() ? author::CaseDraft() : author::CaseDraft::load(case_path.toStdString());
+    auto* window = new ui::InstructorWindow(std::move(draft));
+    window->set_sessions_dir(default_session_path().parent_path());
+    adopt(*window);
+    window->show();
+    return window;
+  } catch (const io::CaseError& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  }
+  return nullptr;
+}
+
+}  // namespace palpa::gui

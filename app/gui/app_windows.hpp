@@ -1,0 +1,57 @@
+#pragma once
+// Opens Palpa's windows by mode (trainee, instructor, review) and
+// wires each one's File menu (ui::ModeMenu) back here, so a trainee can pick another case,
+// an instructor try a case, anyone review a session, from whichever window is open.
+// Windows delete themselves when closed; the application ends with the last one.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <QObject>
+#include <QString>
+
+class QMainWindow;
+class QWidget;
+
+namespace palpa::gui {
+
+struct TraineeSettings {
+  std::string trainee = "trainee";       ///< id recorded in every session
+  std::optional<std::uint64_t> seed;     ///< placement seed; a fresh one per exercise when unset
+  /// The first trainee window open_trainee makes records here; later ones (and an empty
+  /// path) record to default_session_path().
+  std::filesystem::path first_session;
+};
+
+/// $XDG_DATA_HOME/palpa/sessions/trainee-UTCSTAMP.palpa (~/.local/share/... by default).
+std::filesystem::path default_session_path();
+
+class AppWindows : public QObject {
+  Q_OBJECT
+ public:
+  explicit AppWindows(TraineeSettings settings);
+
+  /// Each opens a window and shows it, or reports why not (the one-line error: in a
+  /// message box over `parent`, on stderr without one) and returns nullptr.
+  QMainWindow* open_trainee(const QString& case_path, QWidget* parent = nullptr);
+  QMainWindow* open_review(const QString& session_path, QWidget* parent = nullptr);
+  /// The instructor's editor on this case; an empty path starts a new case (a breast).
+  QMainWindow* open_instructor(const QString& case_path, QWidget* parent = nullptr);
+
+  /// Takes a window opened elsewhere (main's first window): gives it the File menu and
+  /// lets it delete itself when closed.
+  void adopt(QMainWindow& window);
+
+  /// The last error line ("FILE: WHERE: REASON"), empty after a success.
+  const QString& last_error() const { return last_error_; }
+
+ private:
+  void fail(const QString& line, QWidget* parent);
+
+  TraineeSettings settings_;
+  bool first_trainee_ = true;
+  QString last_error_;
+};
+
+}  // namespace palpa::gui

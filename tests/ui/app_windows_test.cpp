@@ -1,0 +1,113 @@
+// The application's windows by mode and the File menu they share (QtTest under Xvfb):
+// the menu opens another case or a session, and a bad file is refused with one line that
+// names it, without closing what is open.
+#include <QAction>
+#include <QApplication>
+#include <QFile>
+#include <QMenu>
+#include <QMenuBar>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QtTest>
+
+#include "app_windows.hpp"
+#include "palpa/ui/mode_menu.hpp"
+#include "palpa/ui/review_window.hpp"
+#include "palpa/ui/trainee_window.hpp"
+
+namespace {
+
+const QString kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
+const QString kFlatCase = PALPA_SOURCE_DIR "/data/cases/flat-5x5.json";
+const QString kExpert = PALPA_SOURCE_DIR "/data/sessions/expert.palpa";
+
+template <class W>
+int open_windows() {
+  int n = 0;
+  for (auto* w : QApplication::topLevelWidgets()) {
+    if (qobject_cast<W*>(w) && w->isVisible()) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+class AppWindowsTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void initTestCase() {
+    QVERIFY(sessions_.isValid());
+    // Sessions recorded by these windows go to a scratch directory, not the user's.
+    qputenv("XDG_DATA_HOME", sessions_.path().toLocal8Bit());
+  }
+
+  void cleanup() { QApplication::closeAllWindows(); QTest::qWait(50); }
+
+  void fileMenuOpensAnotherCaseAndASession() {
+    palpa::gui::AppWindows app({"ui-test", 3, {}});
+    auto* first = app.open_trainee(kDefaultCase);
+    QVERIFY2(first, qPrintable(app.last_error()));
+    QVERIFY(QTest::qWaitForWindowExposed(first));
+    auto* menu = first->findChild<palpa::ui::ModeMenu*>();
+    QVERIFY(menu);
+    QCOMPARE(first->menuBar()->actions().size(), 1);  // File
+
+    menu->choose_file = [](const QString&, const QString& filter) {
+      return filter.contains("json") ? kFlatCase : kExpert;
+    };
+    menu->train_action()->trigger();
+    QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 2);
+    menu->review_action()->trigger();
+    QCOMPARE(open_windows<palpa::ui::ReviewWindow>(), 1);
+    palpa::ui::ReviewWindow* review = nullptr;
+    for (auto* w : QApplication::topLevelWidgets()) {
+      if (auto* r = qobject_cast<palpa::ui::ReviewWindow*>(w)) review = r;
+    }
+    QVERIFY(review);
+    // The trainee id data/sessions/make_sessions.sh recorded.
+    QCOMPARE(review->session().info.trainee, std::string("sample-expert"));
+
+    // Cancelling the dialog opens nothing.
+    menu->choose_file = [](const QString&, const QString&) { return QString(); };
+    menu->train_action()->trigger();
+    QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 2);
+
+    // Each exercise records its own session file under $XDG_DATA_HOME/palpa/sessions.
+    const QDir dir(sessions_.path() + "/palpa/sessions");
+    QCOMPARE(dir.entryList({"*.palpa"}, QDir::Files).size(), 2);
+  }
+
+  void badFilesAreRefusedWithOneLineNamingThem() {
+    palpa::gui::AppWindows app({"ui-test", 3, {}});
+    QTemporaryDir dir;
+    const QString bad_case = dir.filePath("bad.json");
+    QFile f(bad_case);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(R"({"format": "palpa-case", "version": 1, "title": "x", "bodies": []})");
+    f.close();
+    QVERIFY(!app.open_trainee(bad_case));
+    QVERIFY2(app.last_error().startsWith(bad_case + ": /bodies"), qPrintable(app.last_error()));
+
+    const QString bad_session = dir.filePath("bad.palpa");
+    QFile g(bad_session);
+    QVERIFY(g.open(QIODevice::WriteOnly));
+    g.write("this is not a session");
+    g.close();
+    QVERIFY(!app.open_review(bad_session));
+    QVERIFY2(app.last_error().startsWith(bad_session + ":"), qPrintable(app.last_error()));
+    QCOMPARE(open_windows<palpa::ui::ReviewWindow>(), 0);
+  }
+
+ private:
+  QTemporaryDir sessions_;
+};
+
+int main(int argc, char** argv) {
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  AppWindowsTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "app_windows_test.moc"

@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""palpa under Xvfb, stopped by SIGTERM (or Ctrl+C) mid-exercise: it closes its window the
+normal way, so the session file is finished (an End event, no -wal left beside it) and
+reads back with palpa-cli score.
+
+Run: xvfb-run -a python3 tests/ui/test_gui_signal.py --gui build/release/app/gui/palpa --cli build/release/app/palpa-cli
+"""
+import argparse
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+GUI = CLI = None
+
+
+class StopBySignal(unittest.TestCase):
+    def run_and_stop(self, sig):
+        with tempfile.TemporaryDirectory(prefix="palpa_signal_") as d:
+            session = os.path.join(d, "stopped.palpa")
+            gui = subprocess.Popen([GUI, "--seed", "1", "--session", session], stderr=subprocess.PIPE, text=True)
+            line = gui.stderr.readline()
+            while line and "recording the session" not in line:
+                line = gui.stderr.readline()
+            self.assertIn(session, line)
+            time.sleep(1.0)  # some ticks recorded
+            gui.send_signal(sig)
+            code = gui.wait(timeout=60)
+            gui.stderr.close()
+            self.assertEqual(code, 0)
+            self.assertFalse(os.path.exists(session + "-wal"))
+            with sqlite3.connect(f"file:{session}?mode=ro", uri=True) as db:
+                kinds = [k for (k,) in db.execute("SELECT kind FROM events ORDER BY id")]
+                samples = db.execute("SELECT COUNT(*) FROM samples").fetchone()[0]
+            self.assertEqual(kinds[0], "start")
+            self.assertEqual(kinds[-1], "end")
+            self.assertGreater(samples, 200)
+            score = subprocess.run([CLI, "score", session], capture_output=True, text=True, timeout=60)
+            self.assertEqual(score.returncode, 0, score.stderr)
+
+    def test_sigterm_finishes_the_session(self):
+        self.run_and_stop(signal.SIGTERM)
+
+    def test_sigint_finishes_the_session(self):
+        self.run_and_stop(signal.SIGINT)
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--gui", required=True)
+    parser.add_argument("--cli", required=True)
+    args, rest = parser.parse_known_args()
+    GUI, CLI = os.path.abspath(args.gui), os.path.abspath(args.cli)
+    unittest.main(argv=[sys.argv[0]] + rest)
