@@ -211,11 +211,20 @@ void InstructorWindow::refresh() {
   if (bodies != drawn_bodies_) {
     nlohmann::json bodies_only = doc;
     if (bodies_only.is_object()) bodies_only.erase("tumors");
+    // Another kind of body (new ids: breast -> prostate) is framed anew; a size change
+    // keeps the camera, so the change shows.
+    const auto ids = [](const nlohmann::json& list) {
+      std::vector<nlohmann::json> out;
+      if (list.is_array()) {
+        for (const auto& b : list) out.push_back(b.is_object() && b.contains("id") ? b["id"] : nlohmann::json());
+      }
+      return out;
+    };
     try {
-      const bool first = !scene_->has_bodies();
+      const bool reframe = !scene_->has_bodies() || ids(bodies) != ids(drawn_bodies_);
       scene_->set_bodies(io::parse_case(bodies_only.dump(), draft_.source()));
       drawn_bodies_ = bodies;
-      if (first) frame_camera();
+      if (reframe) frame_camera();
     } catch (const std::exception&) {
       // Not drawable: the problems list says why; the last good bodies stay drawn.
     }
