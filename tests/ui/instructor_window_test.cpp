@@ -207,6 +207,13 @@ class InstructorWindowTest : public QObject {
     QVERIFY(cell != nullptr);
     QCOMPARE(cell->background().color(), QColor(255, 200, 200));
     QVERIFY(window.tumour_panel()->table()->item(0, 0)->background().style() == Qt::NoBrush);
+    // Choosing the problem selects the tumour, whose radius box is then marked too.
+    for (int k = 0; k < window.problems()->count(); ++k) {
+      if (window.problems()->item(k)->text().startsWith("/tumors/0/radius")) window.problems()->setCurrentRow(k);
+    }
+    QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    QVERIFY(!window.tumour_panel()->radius_box()->styleSheet().isEmpty());
+    QVERIFY(window.tumour_panel()->stiffness_box()->styleSheet().isEmpty());
     QVERIFY(window.scene().has_bodies());  // the body is still drawn
     QVERIFY(!window.save_as(dir.filePath("out.json")));
     QVERIFY(!QFile::exists(dir.filePath("out.json")));
