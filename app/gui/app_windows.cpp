@@ -11,11 +11,13 @@
 #include <QAction>
 #include <QMessageBox>
 
+#include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/mode_menu.hpp"
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -72,9 +74,7 @@ void AppWindows::adopt(QMainWindow& window) {
   auto* menu = new ui::ModeMenu(window);
   connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
-  // Instructor mode arrives with its window; until then its actions are disabled.
-  menu->author_action()->setEnabled(false);
-  menu->new_case_action()->setEnabled(false);
+  connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
 }
 
 QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent) {
@@ -127,6 +127,25 @@ QMainWindow* AppWindows::open_review(const QString& session_path, QWidget* paren
     fail(QString::fromStdString(e.what()), parent);
   } catch (const std::exception& e) {
     fail(QString::fromStdString(path + ": " + e.what()), parent);
+  }
+  return nullptr;
+}
+
+QMainWindow* AppWindows::open_instructor(const QString& case_path, QWidget* parent) {
+  last_error_.clear();
+  try {
+    // A case that is JSON but not valid opens with its problems listed; only a file that
+    // cannot be read or is not JSON is refused.
+    auto draft = case_path.isEmpty() ? author::CaseDraft() : author::CaseDraft::load(case_path.toStdString());
+    auto* window = new ui::InstructorWindow(std::move(draft));
+    window->set_sessions_dir(default_session_path().parent_path());
+    adopt(*window);
+    window->show();
+    return window;
+  } catch (const io::CaseError& e) {
+    fail(QString::fromStdString(e.what()), parent);
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(e.what()), parent);
   }
   return nullptr;
 }

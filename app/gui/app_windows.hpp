@@ -1,5 +1,5 @@
 #pragma once
-// Opens Palpa's windows by mode (trainee, review; instructor once its window exists) and
+// Opens Palpa's windows by mode (trainee, instructor, review) and
 // wires each one's File menu (ui::ModeMenu) back here, so a trainee can pick another case,
 // an instructor try a case, anyone review a session, from whichever window is open.
 // Windows delete themselves when closed; the application ends with the last one.
@@ -36,6 +36,8 @@ class AppWindows : public QObject {
   /// message box over `parent`, on stderr without one) and returns nullptr.
   QMainWindow* open_trainee(const QString& case_path, QWidget* parent = nullptr);
   QMainWindow* open_review(const QString& session_path, QWidget* parent = nullptr);
+  /// The instructor's editor on this case; an empty path starts a new case (a breast).
+  QMainWindow* open_instructor(const QString& case_path, QWidget* parent = nullptr);
 
   /// Takes a window opened elsewhere (main's first window): gives it the File menu and
   /// lets it delete itself when closed.

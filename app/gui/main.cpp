@@ -1,5 +1,6 @@
 // palpa: the Palpa application. Trainee mode: palpate a case with the mouse, mark what you
-// find, finish for the score card. Review mode: replay a recorded session with its
+// find, finish for the score card. Instructor mode: author a case (presets, tumours,
+// randomization, stiffness maps) and try it. Review mode: replay a recorded session with its
 // metrics. Options and the first file are checked before any window exists, so --help,
 // --version and a bad case or session answer without a display; later files come from
 // the windows' File menu (AppWindows).
@@ -21,10 +22,12 @@
 #include "app_windows.hpp"
 #include "frame_bench.hpp"
 #include "quit_on_signal.hpp"
+#include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/screenshot.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -93,6 +96,46 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
   }
 }
 
+// palpa --mode instructor [--case FILE]: a file that cannot be read or is not JSON answers
+// with one line and exit 2 before any window exists; a JSON file that is not a valid case
+// opens with its problems listed, to be fixed.
+int run_instructor(int argc, char** argv, const std::string& case_path, const std::string& screenshot,
+                   const palpa::gui::TraineeSettings& settings) {
+  palpa::author::CaseDraft draft;  // default: a new breast preset
+  if (!case_path.empty()) {
+    try {
+      draft = palpa::author::CaseDraft::load(case_path);
+    } catch (const palpa::io::CaseError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return kBadInput;
+    }
+  }
+  init_gui_format();
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("palpa");
+  QApplication::setApplicationVersion(palpa::kVersion);
+  try {
+    if (!screenshot.empty()) {
+      palpa::ui::InstructorWindow window(std::move(draft));
+      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
+        print_error(screenshot + ": could not write the screenshot");
+        return kFailure;
+      }
+      return kOk;
+    }
+    palpa::gui::AppWindows windows(settings);
+    auto* window = new palpa::ui::InstructorWindow(std::move(draft));
+    window->set_sessions_dir(palpa::gui::default_session_path().parent_path());
+    windows.adopt(*window);
+    window->show();
+    palpa::gui::quit_on_signals();
+    return QApplication::exec();
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -108,8 +151,9 @@ int main(int argc, char** argv) {
                "palpa"};
   cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
   cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
-  cli.add_option("--mode", mode, "trainee or review (instructor is planned)")
-      ->check(CLI::IsMember({"trainee", "review"}));
+  cli.add_option("--mode", mode,
+                 "trainee, instructor (author a case: --case FILE to edit it, default a new breast) or review")
+      ->check(CLI::IsMember({"trainee", "instructor", "review"}));
   cli.add_option("--session", session_path,
                  "trainee: session file to record (never overwritten; default "
                  "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
@@ -165,6 +209,13 @@ int main(int argc, char** argv) {
   // file per exercise unless --seed is given).
   const palpa::gui::TraineeSettings settings{trainee, seed, {}};
   if (mode == "review") return run_review(argc, argv, session_path, screenshot, settings);
+  if (mode == "instructor") {
+    if (!session_path.empty()) {
+      print_error("--session goes with trainee or review mode; \"Try it\" records in the default sessions folder");
+      return kBadInput;
+    }
+    return run_instructor(argc, argv, cli.count("--case") > 0 ? case_path : std::string(), screenshot, settings);
+  }
 
   palpa::trainer::LiveOptions options;
   options.trainee = trainee;

@@ -1,0 +1,130 @@
+#pragma once
+// The case an instructor is editing (issue 7, instructor mode), headless: the JSON
+// document is the source of truth (so a draft can hold a case that does not validate yet
+// and show where it is wrong), every edit is undoable, and validate() gives the problems
+// with their JSON pointers exactly as palpa-cli validate would.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/author/presets.hpp"
+#include "palpa/author/stiffness_map.hpp"
+#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/io/case_file.hpp"
+
+namespace palpa::author {
+
+/// A point picked on a body's top contour, with the outward unit normal there.
+struct SurfacePoint {
+  std::size_t body = 0;                  ///< index into the case's bodies
+  std::array<double, 3> point{};         ///< m
+  std::array<double, 3> normal{0, 0, 1}; ///< outward; need not be unit length (normalized)
+};
+
+/// What an instructor sets for a tumour besides where it is.
+struct TumourSpec {
+  double depth = 0.01;       ///< m, of the centre below the picked surface point (along the normal)
+  double radius = 0.005;     ///< m
+  double stiffness = 2000.0; ///< N/m: a ~100 kPa region under a fingertip (palpation.md, flat punch)
+};
+
+class CaseDraft {
+ public:
+  /// A new case from a preset at `params`.
+  explicit CaseDraft(const PresetParams& params = preset_defaults(Preset::Breast));
+
+  /// Reads a case file for editing. The draft keeps a document that parses as JSON even
+  /// when it does not validate (validate() then says where). Throws io::CaseError when the
+  /// file cannot be read or is not JSON (nothing to edit).
+  static CaseDraft load(const std::filesystem::path& path);
+  /// A draft of a document (e.g. built by hand or by a test); `source` names it in problems.
+  static CaseDraft from_document(nlohmann::json document, std::string source);
+
+  const nlohmann::json& document() const { return doc_; }
+  /// The file the draft was loaded from or last saved to (empty for a new case).
+  const std::filesystem::path& path() const { return path_; }
+  /// How problems name the case: the path, or "untitled" for a new case.
+  std::string source() const;
+
+  /// The problems palpa-cli validate would report (structure, fit, tumours inside their
+  /// bodies, placement rules that can be drawn); empty when the case is valid.
+  std::vector<io::Problem> validate() const;
+  /// The validated case. Throws io::CaseError with the problems when it is not valid.
+  io::CaseFile valid_case() const;
+  /// The case as parsed, without the fit checks; nothing when its structure is invalid.
+  std::optional<io::CaseFile> parsed() const;
+
+  /// Writes the case (validated first; throws io::CaseError and writes nothing when it is
+  /// invalid) atomically to `path`; the draft then refers to that file and is clean.
+  void save(const std::filesystem::path& path);
+  /// Edited since it was created, loaded or last saved (undoing back to that state clears it).
+  bool dirty() const { return revision_ != saved_revision_; }
+
+  // --- Edits: each is one undo step. Tumour indices are those of the "tumors" array. ---
+
+  /// Replaces the case's bodies by the preset's body and records the parameters (root field
+  /// "preset"). Tumours are kept (re-pointed to the new body): one that no longer fits
+  /// shows up in validate(). Throws std::invalid_argument outside the preset's limits.
+  void apply_preset(const PresetParams& params);
+  void set_title(const std::string& title);
+  /// Adds a tumour `spec.depth` below `where` along its inward normal; returns its index.
+  /// The picked point and normal are kept in the tumour ("anchor", an authoring field
+  /// preserved by every tool) so that its depth can be edited later.
+  std::size_t add_tumour(const SurfacePoint& where, const TumourSpec& spec);
+  /// Moves tumour k under another surface point, keeping its depth, radius and stiffness.
+  void move_tumour(std::size_t k, const SurfacePoint& where);
+  /// Sets tumour k's depth (below its anchor), radius and stiffness.
+  void edit_tumour(std::size_t k, const TumourSpec& spec);
+  void remove_tumour(std::size_t k);
+  /// Sets (or with nothing, removes) tumour k's randomization rule.
+  void set_placement(std::size_t k, const std::optional<exercise::Placement>& rule);
+  /// Sets body b's stiffness from a map (apply_stiffness_map). Throws std::invalid_argument
+  /// for a bad map or range, io::CaseError when the body cannot be read or fitted.
+  void apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max);
+
+  // --- Reading back what the editor shows ---
+
+  std::string title() const;
+  /// The preset the bodies were made from, if the document records one.
+  std::optional<PresetParams> preset() const;
+  std::size_t tumour_count() const;
+  /// Tumour k's body, centre, radius and stiffness as written (no validation).
+  std::optional<mat::Tumour> tumour(std::size_t k) const;
+  /// Tumour k's anchor: as recorded by add_tumour/move_tumour, or else the point of the
+  /// body's top contour straight above its centre (+z, fitted), when there is one.
+  std::optional<SurfacePoint> anchor(std::size_t k) const;
+  /// depth (distance from the anchor), radius and stiffness of tumour k.
+  std::optional<TumourSpec> spec(std::size_t k) const;
+  std::optional<exercise::Placement> placement(std::size_t k) const;
+
+  // --- Undo ---
+  bool can_undo() const { return !undo_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  /// Restores the document before the last edit; false when there is none.
+  bool undo();
+  bool redo();
+  /// Edits kept for undo (the oldest are dropped beyond it).
+  static constexpr std::size_t kMaxUndo = 200;
+
+ private:
+  struct State {
+    nlohmann::json doc;
+    std::uint64_t revision = 0;
+  };
+  /// Records the current document for undo and starts a new revision.
+  void begin_edit();
+  nlohmann::json& tumour_json(std::size_t k);  // throws std::out_of_range
+
+  nlohmann::json doc_;
+  std::filesystem::path path_;
+  std::string source_ = "untitled";
+  std::vector<State> undo_, redo_;
+  std::uint64_t revision_ = 0, next_revision_ = 1, saved_revision_ = 0;
+};
+
+}  // namespace palpa::author

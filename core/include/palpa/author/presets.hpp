@@ -1,0 +1,63 @@
+#pragma once
+// Body presets for instructor authoring (issue 7): a valid case body (docs/case-format.md:
+// rows x cols skeleton grid, radius 0 on the grid boundary, smooth fields) built from a
+// few parameters in SI units. Each preset's defaults and limits are chosen so that every
+// combination within the limits validates and fits (tests/core/author_presets_test.cpp).
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/mat/body_grid.hpp"
+
+namespace palpa::author {
+
+enum class Preset { Breast, Prostate, Patch, Slab };
+
+/// "breast", "prostate", "patch" (skin/abdomen patch), "slab" (generic slab).
+const char* to_string(Preset preset);
+std::optional<Preset> preset_from_string(std::string_view name);
+/// A label for menus: "Breast", "Prostate", "Skin/abdomen patch", "Generic slab".
+const char* label(Preset preset);
+
+struct PresetParams {
+  Preset preset = Preset::Breast;
+  double width = 0.0;      ///< m, extent along x (the grid rows, u)
+  double length = 0.0;     ///< m, extent along y (the grid columns, v)
+  double thickness = 0.0;  ///< m, tissue thickness 2R at the centre (top to bottom contour)
+  double stiffness = 0.0;  ///< N/m per skeleton point (the breast's glandular centre; uniform otherwise)
+  int rows = 0;            ///< grid points along u; 0: the preset's default
+  int cols = 0;            ///< grid points along v; 0: the preset's default
+
+  bool operator==(const PresetParams&) const = default;
+};
+
+/// Closed ranges [lo, hi] a preset accepts.
+struct PresetLimits {
+  double width[2];
+  double length[2];
+  double thickness[2];
+  double stiffness[2];
+  int grid[2];  ///< rows and cols
+};
+
+PresetParams preset_defaults(Preset preset);
+PresetLimits preset_limits(Preset preset);
+
+/// The body of a preset, its id the preset's name. Throws std::invalid_argument naming the
+/// parameter when one is outside the preset's limits.
+mat::BodyGrid make_preset_body(const PresetParams& params);
+
+/// A whole case with that body and no tumours; its document carries the parameters in a
+/// root field "preset" (unknown to format v1, so preserved by every tool) so that an
+/// editor can change the size later.
+io::CaseFile make_preset_case(const PresetParams& params, const std::string& title);
+
+/// {"name", "width", "length", "thickness", "stiffness", "rows", "cols"} and back;
+/// preset_from_json gives nothing for anything malformed.
+nlohmann::json to_json(const PresetParams& params);
+std::optional<PresetParams> preset_from_json(const nlohmann::json& value);
+
+}  // namespace palpa::author

@@ -1,0 +1,329 @@
+#include "palpa/author/case_draft.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "palpa/io/json_text.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+namespace palpa::author {
+namespace {
+
+using nlohmann::json;
+
+std::array<double, 3> unit_normal(const std::array<double, 3>& n) {
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument("the surface normal has no direction");
+  return {n[0] / len, n[1] / len, n[2] / len};
+}
+
+std::array<double, 3> below(const SurfacePoint& where, double depth) {
+  const auto n = unit_normal(where.normal);
+  return {where.point[0] - depth * n[0], where.point[1] - depth * n[1], where.point[2] - depth * n[2]};
+}
+
+std::optional<std::array<double, 3>> read_vec3(const json& v) {
+  if (!v.is_array() || v.size() != 3) return std::nullopt;
+  std::array<double, 3> out{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (!v[c].is_number()) return std::nullopt;
+    out[c] = v[c].get<double>();
+  }
+  return out;
+}
+
+std::optional<double> read_number(const json& obj, const char* key) {
+  if (!obj.is_object() || !obj.contains(key) || !obj[key].is_number()) return std::nullopt;
+  return obj[key].get<double>();
+}
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+}  // namespace
+
+CaseDraft::CaseDraft(const PresetParams& params)
+    : doc_(make_preset_case(params, std::string("New ") + to_string(params.preset) + " case").document) {}
+
+CaseDraft CaseDraft::load(const std::filesystem::path& path) {
+  std::string text;
+  if (auto problem = io::read_text_file(path, io::CaseLimits::kMaxFileBytes, text)) {
+    throw io::CaseError(path.string(), {*problem});
+  }
+  json doc;
+  if (auto problem = io::parse_json_text(text, io::CaseLimits::kMaxDepth, io::CaseLimits::kMaxValues, doc)) {
+    throw io::CaseError(path.string(), {*problem});
+  }
+  CaseDraft draft = from_document(std::move(doc), path.string());
+  draft.path_ = path;
+  return draft;
+}
+
+CaseDraft CaseDraft::from_document(json document, std::string source) {
+  CaseDraft draft;
+  draft.doc_ = std::move(document);
+  draft.source_ = std::move(source);
+  return draft;
+}
+
+std::string CaseDraft::source() const { return path_.empty() ? source_ : path_.string(); }
+
+std::optional<io::CaseFile> CaseDraft::parsed() const {
+  try {
+    return io::parse_case(doc_.dump(), source());
+  } catch (const io::CaseError&) {
+    return std::nullopt;
+  }
+}
+
+io::CaseFile CaseDraft::valid_case() const {
+  // The text round trip applies the same limits as a file would meet.
+  io::CaseFile file = io::parse_case(doc_.dump(), source());
+  (void)scene::Scene::build(file, source());  // fits the bodies, tumours inside them
+  bool rules = false;
+  for (std::size_t k = 0; k < file.tumours.size(); ++k) rules = rules || exercise::placement_of(file, k).has_value();
+  // A rule that can never be drawn would fail the first seeded exercise: try one seed now.
+  if (rules) (void)exercise::place_tumours(file, 1, source());
+  return file;
+}
+
+std::vector<io::Problem> CaseDraft::validate() const {
+  try {
+    (void)valid_case();
+    return {};
+  } catch (const io::CaseError& e) {
+    return e.problems().empty() ? std::vector<io::Problem>{{"/", e.what()}} : e.problems();
+  } catch (const std::exception& e) {
+    return {{"/", std::string("cannot be checked: ") + e.what()}};
+  }
+}
+
+void CaseDraft::save(const std::filesystem::path& path) {
+  const io::CaseFile file = valid_case();
+  io::save_case(file, path);
+  path_ = path;
+  saved_revision_ = revision_;
+}
+
+void CaseDraft::begin_edit() {
+  undo_.push_back({doc_, revision_});
+  if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
+  redo_.clear();
+  revision_ = next_revision_++;
+}
+
+bool CaseDraft::undo() {
+  if (undo_.empty()) return false;
+  redo_.push_back({std::move(doc_), revision_});
+  doc_ = std::move(undo_.back().doc);
+  revision_ = undo_.back().revision;
+  undo_.pop_back();
+  return true;
+}
+
+bool CaseDraft::redo() {
+  if (redo_.empty()) return false;
+  undo_.push_back({std::move(doc_), revision_});
+  doc_ = std::move(redo_.back().doc);
+  revision_ = redo_.back().revision;
+  redo_.pop_back();
+  return true;
+}
+
+json& CaseDraft::tumour_json(std::size_t k) {
+  if (!doc_.is_object() || !doc_.contains("tumors") || !doc_["tumors"].is_array() || k >= doc_["tumors"].size() ||
+      !doc_["tumors"][k].is_object()) {
+    throw std::out_of_range("no tumour " + std::to_string(k));
+  }
+  return doc_["tumors"][k];
+}
+
+void CaseDraft::apply_preset(const PresetParams& params) {
+  const io::CaseFile made = make_preset_case(params, title());  // throws before anything changes
+  begin_edit();
+  if (!doc_.is_object()) doc_ = json::object();
+  doc_["bodies"] = made.document["bodies"];
+  doc_["preset"] = made.document["preset"];
+  const std::string id = made.bodies.front().id;
+  if (doc_.contains("tumors") && doc_["tumors"].is_array()) {
+    for (auto& t : doc_["tumors"]) {
+      if (t.is_object()) t["body"] = id;
+    }
+  }
+  // An exam region names the old bodies; the new body is examined whole.
+  doc_.erase("exam_region");
+}
+
+void CaseDraft::set_title(const std::string& title) {
+  begin_edit();
+  doc_["title"] = title;
+}
+
+std::size_t CaseDraft::add_tumour(const SurfacePoint& where, const TumourSpec& spec) {
+  const auto n = unit_normal(where.normal);
+  const auto& bodies = doc_.is_object() && doc_.contains("bodies") ? doc_["bodies"] : json();
+  if (!bodies.is_array() || where.body >= bodies.size() || !bodies[where.body].is_object() ||
+      !bodies[where.body].contains("id")) {
+    throw std::out_of_range("no body " + std::to_string(where.body));
+  }
+  const json id = bodies[where.body]["id"];
+  begin_edit();
+  if (!doc_.contains("tumors") || !doc_["tumors"].is_array()) doc_["tumors"] = json::array();
+  doc_["tumors"].push_back({{"body", id},
+                            {"center", below(where, spec.depth)},
+                            {"radius", spec.radius},
+                            {"stiffness", spec.stiffness},
+                            {"anchor", {{"point", where.point}, {"normal", n}}}});
+  return doc_["tumors"].size() - 1;
+}
+
+void CaseDraft::move_tumour(std::size_t k, const SurfacePoint& where) {
+  const auto old = spec(k);
+  if (!old) throw std::out_of_range("tumour " + std::to_string(k) + " has no depth to keep");
+  const auto n = unit_normal(where.normal);
+  const auto& bodies = doc_["bodies"];
+  if (!bodies.is_array() || where.body >= bodies.size() || !bodies[where.body].contains("id")) {
+    throw std::out_of_range("no body " + std::to_string(where.body));
+  }
+  const json id = bodies[where.body]["id"];
+  (void)tumour_json(k);
+  begin_edit();
+  json& t = tumour_json(k);
+  t["body"] = id;
+  t["center"] = below(where, old->depth);
+  t["anchor"] = {{"point", where.point}, {"normal", n}};
+}
+
+void CaseDraft::edit_tumour(std::size_t k, const TumourSpec& spec) {
+  (void)tumour_json(k);
+  const auto where = anchor(k);
+  if (!where) throw std::out_of_range("tumour " + std::to_string(k) + " lies under no surface point");
+  const auto n = unit_normal(where->normal);
+  begin_edit();
+  json& t = tumour_json(k);
+  t["center"] = below(*where, spec.depth);
+  t["radius"] = spec.radius;
+  t["stiffness"] = spec.stiffness;
+  t["anchor"] = {{"point", where->point}, {"normal", n}};
+}
+
+void CaseDraft::remove_tumour(std::size_t k) {
+  (void)tumour_json(k);
+  begin_edit();
+  doc_["tumors"].erase(k);
+}
+
+void CaseDraft::set_placement(std::size_t k, const std::optional<exercise::Placement>& rule) {
+  (void)tumour_json(k);
+  begin_edit();
+  json& t = tumour_json(k);
+  if (rule) {
+    t["placement"] = {{"u", rule->u}, {"v", rule->v}, {"depth", rule->depth}};
+  } else {
+    t.erase("placement");
+  }
+}
+
+void CaseDraft::apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max) {
+  const io::CaseFile file = io::parse_case(doc_.dump(), source());  // throws CaseError
+  if (b >= file.bodies.size()) throw std::out_of_range("no body " + std::to_string(b));
+  mat::BodyGrid grid = file.bodies[b];
+  try {
+    author::apply_stiffness_map(grid, map, k_min, k_max);
+  } catch (const mat::FitError& e) {
+    throw io::CaseError(source(), {{"/bodies/" + std::to_string(b) + "/stiffness", e.what()}});
+  }
+  begin_edit();
+  doc_["bodies"][b]["stiffness"] = grid.stiffness;
+}
+
+std::string CaseDraft::title() const {
+  return doc_.is_object() && doc_.contains("title") && doc_["title"].is_string() ? doc_["title"].get<std::string>()
+                                                                                  : std::string();
+}
+
+std::optional<PresetParams> CaseDraft::preset() const {
+  if (!doc_.is_object() || !doc_.contains("preset")) return std::nullopt;
+  return preset_from_json(doc_["preset"]);
+}
+
+std::size_t CaseDraft::tumour_count() const {
+  return doc_.is_object() && doc_.contains("tumors") && doc_["tumors"].is_array() ? doc_["tumors"].size() : 0;
+}
+
+std::optional<mat::Tumour> CaseDraft::tumour(std::size_t k) const {
+  if (k >= tumour_count()) return std::nullopt;
+  const json& t = doc_["tumors"][k];
+  if (!t.is_object()) return std::nullopt;
+  mat::Tumour out;
+  if (t.contains("body") && t["body"].is_string()) out.body = t["body"].get<std::string>();
+  const auto c = t.contains("center") ? read_vec3(t["center"]) : std::nullopt;
+  const auto r = read_number(t, "radius"), s = read_number(t, "stiffness");
+  if (!c || !r || !s) return std::nullopt;
+  out.center = *c;
+  out.radius = *r;
+  out.stiffness = *s;
+  return out;
+}
+
+std::optional<SurfacePoint> CaseDraft::anchor(std::size_t k) const {
+  const auto t = tumour(k);
+  if (!t) return std::nullopt;
+  const json& obj = doc_["tumors"][k];
+  std::size_t body = 0;
+  if (doc_.contains("bodies") && doc_["bodies"].is_array()) {
+    for (std::size_t b = 0; b < doc_["bodies"].size(); ++b) {
+      const json& bj = doc_["bodies"][b];
+      if (bj.is_object() && bj.contains("id") && bj["id"] == t->body) body = b;
+    }
+  }
+  if (obj.contains("anchor") && obj["anchor"].is_object()) {
+    const auto p = obj["anchor"].contains("point") ? read_vec3(obj["anchor"]["point"]) : std::nullopt;
+    const auto n = obj["anchor"].contains("normal") ? read_vec3(obj["anchor"]["normal"]) : std::nullopt;
+    if (p && n) return SurfacePoint{body, *p, *n};
+  }
+  // No recorded pick (a case written elsewhere): the top contour straight above the centre.
+  const auto file = parsed();
+  if (!file) return std::nullopt;
+  io::CaseFile bodies_only = *file;
+  bodies_only.tumours.clear();
+  try {
+    const auto scene = scene::Scene::build(bodies_only, source());
+    const trainer::TopContourPicker picker(scene);
+    const trainer::Vec3 centre(t->center[0], t->center[1], t->center[2]);
+    const auto hit = picker.pick(centre, trainer::Vec3::UnitZ());
+    if (!hit || hit->distance <= 0.0) return std::nullopt;
+    // The normal from the centre to the hit, so that depth along it gives the centre back.
+    const trainer::Vec3 n = (hit->point - centre).normalized();
+    return SurfacePoint{hit->body, {hit->point.x(), hit->point.y(), hit->point.z()}, {n.x(), n.y(), n.z()}};
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<TumourSpec> CaseDraft::spec(std::size_t k) const {
+  const auto t = tumour(k);
+  const auto a = anchor(k);
+  if (!t || !a) return std::nullopt;
+  return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness};
+}
+
+std::optional<exercise::Placement> CaseDraft::placement(std::size_t k) const {
+  if (k >= tumour_count()) return std::nullopt;
+  const json& t = doc_["tumors"][k];
+  if (!t.is_object() || !t.contains("placement")) return std::nullopt;
+  const json& p = t["placement"];
+  exercise::Placement out;
+  for (auto [key, range] : {std::pair{"u", &out.u}, std::pair{"v", &out.v}, std::pair{"depth", &out.depth}}) {
+    if (!p.is_object() || !p.contains(key) || !p[key].is_array() || p[key].size() != 2 || !p[key][0].is_number() ||
+        !p[key][1].is_number()) {
+      return std::nullopt;
+    }
+    *range = {p[key][0].get<double>(), p[key][1].get<double>()};
+  }
+  return out;
+}
+
+}  // namespace palpa::author

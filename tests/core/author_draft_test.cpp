@@ -1,0 +1,258 @@
+// The instructor's case draft: undoable edits, tumours placed under picked points, save and
+// load, and problems reported at the field that causes them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "palpa/author/case_draft.hpp"
+#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+namespace palpa::author {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  fs::path dir = fs::temp_directory_path() / (std::string("palpa_author_") + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+bool has_problem_at(const std::vector<io::Problem>& problems, const std::string& where) {
+  for (const auto& p : problems) {
+    if (p.where == where) return true;
+  }
+  return false;
+}
+
+// The point of the slab's top contour above (x, y), picked as the window does.
+SurfacePoint pick_top(const CaseDraft& draft, double x, double y) {
+  const auto scene = scene::Scene::build(draft.valid_case(), "draft");
+  const trainer::TopContourPicker picker(scene);
+  const auto hit = picker.pick(trainer::Vec3(x, y, 1.0), trainer::Vec3(0, 0, -1));
+  EXPECT_TRUE(hit.has_value());
+  return {hit->body, {hit->point.x(), hit->point.y(), hit->point.z()}, {hit->normal.x(), hit->normal.y(), hit->normal.z()}};
+}
+
+TEST(AuthorDraft, NewDraftIsAValidBreastAndClean) {
+  CaseDraft draft;
+  EXPECT_TRUE(draft.validate().empty());
+  EXPECT_FALSE(draft.dirty());
+  EXPECT_FALSE(draft.can_undo());
+  ASSERT_TRUE(draft.preset().has_value());
+  EXPECT_EQ(draft.preset()->preset, Preset::Breast);
+}
+
+TEST(AuthorDraft, UndoRestoresTheExactDocumentAndRedoReapplies) {
+  CaseDraft draft;
+  const nlohmann::json before = draft.document();
+  draft.set_title("Lump in the upper-outer quadrant");
+  const nlohmann::json after_title = draft.document();
+  PresetParams p = preset_defaults(Preset::Breast);
+  p.width = 0.12;
+  draft.apply_preset(p);
+  const nlohmann::json after_preset = draft.document();
+  EXPECT_NE(after_preset, after_title);
+
+  ASSERT_TRUE(draft.undo());
+  EXPECT_EQ(draft.document(), after_title);
+  ASSERT_TRUE(draft.undo());
+  EXPECT_EQ(draft.document(), before);
+  EXPECT_FALSE(draft.can_undo());
+  EXPECT_FALSE(draft.undo());
+
+  ASSERT_TRUE(draft.redo());
+  EXPECT_EQ(draft.document(), after_title);
+  ASSERT_TRUE(draft.redo());
+  EXPECT_EQ(draft.document(), after_preset);
+  EXPECT_FALSE(draft.can_redo());
+
+  // A new edit after an undo drops the redo branch.
+  ASSERT_TRUE(draft.undo());
+  draft.set_title("Another");
+  EXPECT_FALSE(draft.can_redo());
+  EXPECT_EQ(draft.title(), "Another");
+}
+
+TEST(AuthorDraft, TumourLiesTheSetDepthBelowThePickedPoint) {
+  PresetParams slab = preset_defaults(Preset::Slab);  // flat top at z = thickness over its middle
+  CaseDraft draft(slab);
+  // The middle of the slab is flat (by symmetry), its top at z = thickness (the skeleton
+  // at T/2 plus radius T/2); the tessellated pick is within its 0.1 mm tolerance.
+  const SurfacePoint where = pick_top(draft, 0.0, 0.0);
+  EXPECT_NEAR(where.point[2], slab.thickness, 1e-4);
+  const double depth = 0.012;
+  const std::size_t k = draft.add_tumour(where, {depth, 0.004, 1500.0});
+  const auto t = draft.tumour(k);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(t->center[2], slab.thickness - depth, 1e-4);
+  EXPECT_NEAR(t->center[0], 0.0, 1e-6);
+  EXPECT_NEAR(t->center[1], 0.0, 1e-6);
+  EXPECT_EQ(t->body, "slab");
+  EXPECT_TRUE(draft.validate().empty());
+  const auto spec = draft.spec(k);
+  ASSERT_TRUE(spec.has_value());
+  EXPECT_NEAR(spec->depth, depth, 1e-12);
+
+  // Editing the depth moves the centre along the normal; radius and stiffness follow.
+  draft.edit_tumour(k, {0.02, 0.005, 1800.0});
+  EXPECT_NEAR(draft.tumour(k)->center[2], where.point[2] - 0.02, 1e-6);
+  EXPECT_DOUBLE_EQ(draft.tumour(k)->radius, 0.005);
+  EXPECT_DOUBLE_EQ(draft.tumour(k)->stiffness, 1800.0);
+
+  // Moving keeps the depth, now along the (slightly tilted) normal of the new point: the
+  // rounded edge tilts it by less than 0.1 rad at x = -0.03.
+  const SurfacePoint other = pick_top(draft, -0.03, 0.0);
+  draft.move_tumour(k, other);
+  const auto moved = draft.tumour(k)->center;
+  EXPECT_NEAR(std::hypot(moved[0] - other.point[0], moved[1] - other.point[1], moved[2] - other.point[2]), 0.02, 1e-12);
+  EXPECT_NEAR(moved[0], -0.03, 0.02 * 0.1);
+  EXPECT_NEAR(moved[2], other.point[2] - 0.02, 0.02 * 0.01);
+
+  draft.remove_tumour(k);
+  EXPECT_EQ(draft.tumour_count(), 0u);
+  ASSERT_TRUE(draft.undo());
+  EXPECT_EQ(draft.tumour_count(), 1u);
+}
+
+TEST(AuthorDraft, PlacedCaseSavedAndLoadedRoundTripsExactly) {
+  const fs::path dir = temp_dir();
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  const auto k = draft.add_tumour(pick_top(draft, 0.0, 0.0), {0.015, 0.005, 2000.0});
+  draft.set_placement(k, exercise::Placement{{0.3, 0.7}, {0.25, 0.75}, {0.45, 0.55}});
+  ASSERT_TRUE(draft.validate().empty());
+  ASSERT_TRUE(draft.dirty());
+  draft.save(dir / "authored.json");
+  EXPECT_FALSE(draft.dirty());
+
+  // The draft reads back equal, rule and anchor included.
+  const CaseDraft loaded = CaseDraft::load(dir / "authored.json");
+  EXPECT_EQ(loaded.document(), draft.document());
+  ASSERT_TRUE(loaded.placement(0).has_value());
+  EXPECT_EQ(loaded.placement(0)->v[0], 0.25);
+
+  // A seeded exercise's placed case round-trips bit for bit.
+  const io::CaseFile placed = exercise::place_tumours(loaded.valid_case(), 42, "authored");
+  io::save_case(placed, dir / "placed.json");
+  const io::CaseFile again = io::load_case(dir / "placed.json");
+  ASSERT_EQ(again.tumours.size(), 1u);
+  EXPECT_EQ(again.tumours[0].center, placed.tumours[0].center);
+  EXPECT_NE(again.tumours[0].center, draft.tumour(0)->center);  // it was moved
+  EXPECT_EQ(io::to_json(again), io::to_json(placed));
+  fs::remove_all(dir);
+}
+
+TEST(AuthorDraft, DirtyFollowsUndoBackToTheSavedState) {
+  const fs::path dir = temp_dir();
+  CaseDraft draft;
+  draft.set_title("a");
+  draft.save(dir / "a.json");
+  EXPECT_FALSE(draft.dirty());
+  draft.set_title("b");
+  EXPECT_TRUE(draft.dirty());
+  draft.undo();
+  EXPECT_FALSE(draft.dirty());
+  draft.undo();
+  EXPECT_TRUE(draft.dirty());
+  draft.redo();
+  EXPECT_FALSE(draft.dirty());
+  fs::remove_all(dir);
+}
+
+TEST(AuthorDraft, ProblemsPointAtTheOffendingTumourField) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  const SurfacePoint top = pick_top(draft, 0.0, 0.0);
+  draft.add_tumour(top, {0.015, 0.005, 2000.0});
+  // Radius 0: the structural check names the field.
+  draft.add_tumour(pick_top(draft, 0.03, 0.03), {0.01, 0.0, 2000.0});
+  auto problems = draft.validate();
+  EXPECT_TRUE(has_problem_at(problems, "/tumors/1/radius")) << problems.front().where;
+  EXPECT_THROW((void)draft.valid_case(), io::CaseError);
+  draft.undo();
+  // Above the skin: the scene check names the tumour.
+  draft.add_tumour(top, {-0.01, 0.004, 2000.0});
+  problems = draft.validate();
+  ASSERT_FALSE(problems.empty());
+  EXPECT_TRUE(has_problem_at(problems, "/tumors/1")) << problems.front().where << ": " << problems.front().reason;
+  // Saving an invalid case writes nothing.
+  const fs::path dir = temp_dir();
+  EXPECT_THROW(draft.save(dir / "bad.json"), io::CaseError);
+  EXPECT_FALSE(fs::exists(dir / "bad.json"));
+  // A rule that can never be drawn (a tumour thicker than the slab) is found before a trainee meets it.
+  draft.undo();
+  draft.edit_tumour(0, {0.015, 0.005, 2000.0});
+  draft.set_placement(0, exercise::Placement{{0.0, 0.02}, {0.0, 0.02}, {0.0, 0.05}});
+  EXPECT_TRUE(has_problem_at(draft.validate(), "/tumors/0/placement"));
+  fs::remove_all(dir);
+}
+
+TEST(AuthorDraft, InvalidDocumentLoadsForEditingAndNotJsonDoesNot) {
+  const fs::path dir = temp_dir();
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  nlohmann::json doc = draft.document();
+  doc["bodies"][0]["radius"][0] = 0.01;  // boundary radius must be 0
+  {
+    std::ofstream(dir / "bad.json") << doc.dump(2);
+    std::ofstream(dir / "notjson.json") << "{ \"format\": ";
+  }
+  const CaseDraft loaded = CaseDraft::load(dir / "bad.json");
+  EXPECT_TRUE(has_problem_at(loaded.validate(), "/bodies/0/radius/0"));
+  EXPECT_EQ(loaded.source(), (dir / "bad.json").string());
+  EXPECT_THROW((void)CaseDraft::load(dir / "notjson.json"), io::CaseError);
+  EXPECT_THROW((void)CaseDraft::load(dir / "missing.json"), io::CaseError);
+  fs::remove_all(dir);
+}
+
+TEST(AuthorDraft, PresetChangeKeepsTumoursAndReportsOnesLeftOutside) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  draft.add_tumour(pick_top(draft, 0.04, 0.0), {0.015, 0.005, 2000.0});
+  PresetParams small = preset_defaults(Preset::Slab);
+  small.width = 0.05;  // the tumour at x = 0.04 is now outside
+  draft.apply_preset(small);
+  EXPECT_TRUE(has_problem_at(draft.validate(), "/tumors/0"));
+  // Out-of-range parameters change nothing.
+  PresetParams huge = small;
+  huge.width = 5.0;
+  const auto doc = draft.document();
+  EXPECT_THROW(draft.apply_preset(huge), std::invalid_argument);
+  EXPECT_EQ(draft.document(), doc);
+  draft.apply_preset(preset_defaults(Preset::Breast));
+  EXPECT_EQ(draft.tumour(0)->body, "breast");
+}
+
+TEST(AuthorDraft, DepthOfATumourWithoutAnchorComesFromTheSurfaceAbove) {
+  CaseDraft draft = CaseDraft::load(PALPA_SOURCE_DIR "/data/cases/default.json");
+  ASSERT_TRUE(draft.validate().empty());
+  const auto before = draft.tumour(0);
+  const auto spec = draft.spec(0);
+  ASSERT_TRUE(spec.has_value());
+  // default.json's tumour sits on the skeleton: its depth is about the radius there (< 25 mm).
+  EXPECT_GT(spec->depth, 0.005);
+  EXPECT_LT(spec->depth, 0.025);
+  // Re-applying the same spec leaves the centre where it was.
+  draft.edit_tumour(0, *spec);
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(draft.tumour(0)->center[c], before->center[c], 1e-12);
+}
+
+TEST(AuthorDraft, StiffnessMapIsAnUndoableEdit) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  const auto before = draft.document();
+  StiffnessMap half{1, 2, {0.0, 1.0}};
+  draft.apply_stiffness_map(0, half, 100.0, 300.0);
+  const auto k = draft.document()["bodies"][0]["stiffness"];
+  EXPECT_DOUBLE_EQ(k[0].get<double>(), 100.0);       // point (0, 0): v = 0
+  EXPECT_DOUBLE_EQ(k[10].get<double>(), 300.0);      // point (0, 10): v = 1
+  EXPECT_NEAR(k[5].get<double>(), 200.0, 1e-9);      // point (0, 5): v = 0.5
+  EXPECT_TRUE(draft.validate().empty());
+  draft.undo();
+  EXPECT_EQ(draft.document(), before);
+}
+
+}  // namespace
+}  // namespace palpa::author

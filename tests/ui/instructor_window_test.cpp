@@ -1,0 +1,336 @@
+// The instructor's authoring window under Xvfb: it opens on a new breast; the preset
+// controls change the drawn body; a click on the body places a tumour under it at the set
+// depth; undo/redo (actions and keys); save -> open round-trips the case; a bad case shows
+// its problem at the field; a grayscale image sets the stiffness; "Try it" opens a trainee
+// window recording a session; palpa --mode instructor --screenshot draws the body.
+#include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QImage>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QProcess>
+#include <QSurfaceFormat>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QWindow>
+#include <QtTest>
+#include <filesystem>
+#include <fstream>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include "palpa/author/case_draft.hpp"
+#include "palpa/io/case_file.hpp"
+#include "palpa/ui/instructor_preset_panel.hpp"
+#include "palpa/ui/instructor_scene.hpp"
+#include "palpa/ui/instructor_tumour_panel.hpp"
+#include "palpa/ui/instructor_window.hpp"
+#include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/vtk_view.hpp"
+
+namespace {
+
+using palpa::author::Preset;
+using palpa::ui::InstructorWindow;
+
+const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
+
+/// Counts pixels of the skin colour the bodies are drawn in (as tests/ui/trainee_window_test.cpp).
+int skin_pixels(const QImage& image) {
+  int count = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      if (c.red() > 90 && c.red() - c.blue() > 35 && c.green() > c.blue()) ++count;
+    }
+  }
+  return count;
+}
+
+struct Run {
+  int code = -1;
+  QString out, err;
+};
+
+Run run_palpa(const QStringList& arguments) {
+  QProcess p;
+  p.start(PALPA_GUI_EXE, arguments);
+  p.waitForFinished(60000);
+  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
+          QString::fromUtf8(p.readAllStandardError())};
+}
+
+void show(InstructorWindow& window) {
+  window.show();
+  QVERIFY(QTest::qWaitForWindowExposed(&window));
+  QTest::qWait(50);
+}
+
+bool has_problem(const InstructorWindow& window, const QString& where) {
+  for (int k = 0; k < window.problems()->count(); ++k) {
+    if (window.problems()->item(k)->text().startsWith(where + ": ")) return true;
+  }
+  return false;
+}
+
+void write_text(const QString& path, const std::string& text) { std::ofstream(path.toStdString()) << text; }
+
+}  // namespace
+
+class InstructorWindowTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void opensOnANewValidBreast() {
+    InstructorWindow window{palpa::author::CaseDraft()};
+    show(window);
+    QVERIFY(window.scene().has_bodies());
+    QCOMPARE(window.problems()->count(), 1);
+    QVERIFY(window.problems()->item(0)->text().startsWith("No problems"));
+    QCOMPARE(window.preset_panel()->preset_box()->currentData().toString(), QString("breast"));
+    QVERIFY(!window.undo_action()->isEnabled());
+    QVERIFY(!window.draft().dirty());
+  }
+
+  // The drawn body follows the controls: width 140 -> 100 mm narrows it along x; the slab
+  // preset makes it 30 mm thick (top at z = T, bottom at 0).
+  void presetControlsChangeTheDrawnBody() {
+    InstructorWindow window{palpa::author::CaseDraft()};
+    show(window);
+    const auto before = window.scene().bounds();
+    QVERIFY(std::abs((before[1] - before[0]) - 0.14) < 0.14 * 0.02);
+    window.preset_panel()->width_box()->setValue(100.0);
+    const auto narrow = window.scene().bounds();
+    QVERIFY2(std::abs((narrow[1] - narrow[0]) - 0.10) < 0.10 * 0.02, qPrintable(QString::number(narrow[1] - narrow[0])));
+    QVERIFY(std::abs((narrow[3] - narrow[2]) - (before[3] - before[2])) < 1e-6);  // length unchanged
+    QCOMPARE(window.draft().preset()->width, 0.1);
+    QVERIFY(window.draft().dirty());
+    const int slab = window.preset_panel()->preset_box()->findData(QString("slab"));
+    window.preset_panel()->preset_box()->setCurrentIndex(slab);
+    const auto flat = window.scene().bounds();
+    QVERIFY2(std::abs((flat[5] - flat[4]) - 0.03) < 5e-4, qPrintable(QString::number(flat[5] - flat[4])));
+    QVERIFY(std::abs((flat[1] - flat[0]) - 0.12) < 0.12 * 0.02);
+    QCOMPARE(window.draft().document()["bodies"][0]["id"].get<std::string>(), std::string("slab"));
+  }
+
+  // A scripted click over the slab's centre places a tumour straight under it, at the depth
+  // set in the panel below the top (z = thickness there); undo and redo by action and key.
+  void clickPlacesATumourAtTheSetDepthAndUndoRedo() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    window.tumour_panel()->depth_box()->setValue(12.0);
+    window.tumour_panel()->radius_box()->setValue(4.0);
+    const double top = 0.03;
+    const QPoint at = window.to_view(palpa::trainer::Vec3(0.0, 0.0, top));
+    QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, at);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+    const auto t = *window.draft().tumour(0);
+    // One pixel is about 0.15 mm at this zoom.
+    QVERIFY2(std::abs(t.center[0]) < 1e-3 && std::abs(t.center[1]) < 1e-3,
+             qPrintable(QString("%1 %2").arg(t.center[0]).arg(t.center[1])));
+    QVERIFY2(std::abs(t.center[2] - (top - 0.012)) < 2e-4, qPrintable(QString::number(t.center[2])));
+    QCOMPARE(t.radius, 0.004);
+    QCOMPARE(window.scene().tumour_count(), std::size_t{1});
+    QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    QVERIFY(has_problem(window, "No problems") || window.problems()->item(0)->text().startsWith("No problems"));
+
+    // Off the body: nothing placed.
+    QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, QPoint(3, 3));
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+
+    // Editing the selected tumour's depth is one more undo step.
+    window.tumour_panel()->depth_box()->setValue(15.0);
+    QVERIFY(std::abs(window.draft().tumour(0)->center[2] - (top - 0.015)) < 2e-4);
+    window.undo_action()->trigger();
+    QVERIFY(std::abs(window.draft().tumour(0)->center[2] - (top - 0.012)) < 2e-4);
+    window.undo_action()->trigger();
+    QCOMPARE(window.draft().tumour_count(), std::size_t{0});
+    QCOMPARE(window.scene().tumour_count(), std::size_t{0});
+    QVERIFY(window.redo_action()->isEnabled());
+    // Ctrl+Shift+Z redoes, Ctrl+Z undoes, in the active window (Xvfb has no window manager
+    // to activate it).
+    QApplication::setActiveWindow(&window);
+    QTest::keyClick(&window, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+    QTest::keyClick(&window, Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{0});
+  }
+
+  void saveThenOpenRoundTripsTheCase() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Prostate))};
+    show(window);
+    window.title_edit()->setText("Prostate, one nodule");
+    emit window.title_edit()->editingFinished();
+    window.tumour_panel()->depth_box()->setValue(8.0);
+    window.tumour_panel()->radius_box()->setValue(2.5);
+    window.tumour_panel()->stiffness_box()->setValue(1500.0);
+    QVERIFY(window.click_at(window.to_view(palpa::trainer::Vec3(0.0, 0.0, 0.03))));
+    window.tumour_panel()->randomize_box()->setChecked(true);
+    window.tumour_panel()->rule_box(4)->setValue(0.45);  // depth fraction from 0.45
+    QVERIFY(window.draft().placement(0).has_value());
+    QCOMPARE(window.draft().placement(0)->depth[0], 0.45);
+    const QString path = dir.filePath("prostate.json");
+    QVERIFY2(window.save_as(path), qPrintable(window.message()));
+    QVERIFY(!window.draft().dirty());
+    QVERIFY(window.windowTitle().contains("prostate.json"));
+
+    InstructorWindow again{palpa::author::CaseDraft()};
+    QVERIFY(again.open_case(path));
+    QCOMPARE(again.draft().document(), window.draft().document());
+    QCOMPARE(again.title_edit()->text(), QString("Prostate, one nodule"));
+    QCOMPARE(again.tumour_panel()->table()->rowCount(), 1);
+    QCOMPARE(again.preset_panel()->preset_box()->currentData().toString(), QString("prostate"));
+    // palpa-cli's reader agrees.
+    const auto file = palpa::io::load_case(path.toStdString());
+    QCOMPARE(file.tumours.size(), std::size_t{1});
+    QCOMPARE(file.tumours[0].stiffness, 1500.0);
+  }
+
+  // A case whose tumour has radius 0 opens with the problem listed at /tumors/0/radius, the
+  // tumour's radius cell highlighted; it cannot be saved or tried.
+  void badCaseShowsItsProblemAtTheField() {
+    QTemporaryDir dir;
+    auto doc = palpa::io::to_json(palpa::io::load_case(kDefaultCase));
+    doc["tumors"][0]["radius"] = 0.0;
+    const QString bad = dir.filePath("bad.json");
+    write_text(bad, doc.dump(2));
+    InstructorWindow window{palpa::author::CaseDraft()};
+    show(window);
+    QVERIFY(window.open_case(bad));
+    QVERIFY(has_problem(window, "/tumors/0/radius"));
+    auto* cell = window.tumour_panel()->table()->item(0, 1);
+    QVERIFY(cell != nullptr);
+    QCOMPARE(cell->background().color(), QColor(255, 200, 200));
+    QVERIFY(window.tumour_panel()->table()->item(0, 0)->background().style() == Qt::NoBrush);
+    // Choosing the problem selects the tumour, whose radius box is then marked too.
+    for (int k = 0; k < window.problems()->count(); ++k) {
+      if (window.problems()->item(k)->text().startsWith("/tumors/0/radius")) window.problems()->setCurrentRow(k);
+    }
+    QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    QVERIFY(!window.tumour_panel()->radius_box()->styleSheet().isEmpty());
+    QVERIFY(window.tumour_panel()->stiffness_box()->styleSheet().isEmpty());
+    QVERIFY(window.scene().has_bodies());  // the body is still drawn
+    QVERIFY(!window.save_as(dir.filePath("out.json")));
+    QVERIFY(!QFile::exists(dir.filePath("out.json")));
+    QVERIFY(window.try_it() == nullptr);
+
+    // Not JSON: one line naming the file and position; the current case stays.
+    const QString broken = dir.filePath("broken.json");
+    write_text(broken, "{ \"format\": ");
+    QVERIFY(!window.open_case(broken));
+    QVERIFY2(window.message().startsWith(broken + ": line "), qPrintable(window.message()));
+    QCOMPARE(window.draft().source(), bad.toStdString());
+  }
+
+  // A 64 x 32 grayscale ramp, black at the left to white at the right (along x, the grid
+  // rows): with black = 100 and white = 500 N/m, skeleton row i of the 11 x 11 slab gets
+  // 100 + 400 i / 10 (to the 8-bit quantization).
+  void stiffnessImageSetsTheStiffness() {
+    QTemporaryDir dir;
+    QImage ramp(64, 32, QImage::Format_Grayscale8);
+    for (int y = 0; y < ramp.height(); ++y) {
+      for (int x = 0; x < ramp.width(); ++x) {
+        const int v = static_cast<int>(std::lround(x * 255.0 / 63.0));
+        ramp.setPixelColor(x, y, QColor(v, v, v));
+      }
+    }
+    const QString png = dir.filePath("ramp.png");
+    QVERIFY(ramp.save(png));
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    // The map's range: black and white stiffness.
+    auto boxes = window.preset_panel()->findChildren<QDoubleSpinBox*>();
+    QDoubleSpinBox* black = nullptr;
+    QDoubleSpinBox* white = nullptr;
+    for (auto* b : boxes) {
+      if (b->toolTip() == "Stiffness of black pixels") black = b;
+      if (b->toolTip() == "Stiffness of white pixels") white = b;
+    }
+    QVERIFY(black && white);
+    black->setValue(100.0);
+    white->setValue(500.0);
+    QVERIFY2(window.import_stiffness_map(png), qPrintable(window.message()));
+    const auto k = window.draft().document()["bodies"][0]["stiffness"];
+    for (int i = 0; i < 11; ++i) {
+      for (int j = 0; j < 11; ++j) {
+        const double expected = 100.0 + 400.0 * i / 10.0;
+        const double got = k[static_cast<std::size_t>(i * 11 + j)].get<double>();
+        QVERIFY2(std::abs(got - expected) < 2.0, qPrintable(QString("%1,%2: %3 vs %4").arg(i).arg(j).arg(got).arg(expected)));
+      }
+    }
+    // The overlay is on and spans the new range; the top surface carries the stiffness.
+    QVERIFY(window.scene().stiffness_overlay());
+    const auto range = window.scene().stiffness_range();
+    QVERIFY2(std::abs(range[0] - 100.0) < 3.0 && std::abs(range[1] - 500.0) < 3.0,
+             qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
+    QVERIFY(window.scene().top(0)->GetPointData()->GetScalars() != nullptr);
+
+    // An unreadable image: a clear message, the case unchanged.
+    const auto doc = window.draft().document();
+    const QString fake = dir.filePath("fake.png");
+    write_text(fake, "not an image");
+    QVERIFY(!window.import_stiffness_map(fake));
+    QVERIFY2(window.message().startsWith(fake + ": "), qPrintable(window.message()));
+    QCOMPARE(window.draft().document(), doc);
+    QVERIFY(!window.import_stiffness_map(dir.filePath("missing.png")));
+  }
+
+  void tryItOpensTheCaseInATraineeWindow() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    window.set_sessions_dir(dir.filePath("sessions").toStdString());
+    show(window);
+    QVERIFY(window.click_at(window.to_view(palpa::trainer::Vec3(0.01, 0.0, 0.03))));
+    auto* trainee = window.try_it();
+    QVERIFY2(trainee != nullptr, qPrintable(window.message()));
+    QVERIFY(QTest::qWaitForWindowExposed(trainee));
+    QVERIFY(trainee->exercise().started());
+    QCOMPARE(trainee->exercise().placed_case().tumours.size(), std::size_t{1});
+    QCOMPARE(trainee->exercise().placed_case().tumours[0].center, window.draft().tumour(0)->center);
+    QVERIFY(std::filesystem::exists(trainee->exercise().session_path()));
+    QCOMPARE(QString::fromStdString(trainee->exercise().session_path().parent_path().string()), dir.filePath("sessions"));
+    trainee->close();  // finishes the session; the window deletes itself
+    QTRY_VERIFY(window.try_window() == nullptr);
+  }
+
+  void screenshotShowsTheBody() {
+    QTemporaryDir dir;
+    const QString png = dir.filePath("instructor.png");
+    const Run r = run_palpa({"--mode", "instructor", "--screenshot", png});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QImage image(png);
+    QVERIFY(!image.isNull());
+    QCOMPARE(image.size(), QSize(1280, 800));
+    const int skin = skin_pixels(image);
+    QVERIFY2(skin > image.width() * image.height() / 10, qPrintable(QString::number(skin)));
+
+    const Run edit = run_palpa({"--mode", "instructor", "--case", QString::fromStdString(kDefaultCase), "--screenshot",
+                                dir.filePath("default.png")});
+    QVERIFY2(edit.code == 0, qPrintable(edit.err));
+    QVERIFY(skin_pixels(QImage(dir.filePath("default.png"))) > image.width() * image.height() / 10);
+
+    const QString broken = dir.filePath("broken.json");
+    write_text(broken, "{ \"format\": ");
+    const Run bad = run_palpa({"--mode", "instructor", "--case", broken});
+    QCOMPARE(bad.code, 2);
+    QCOMPARE(bad.err.trimmed().split('\n').size(), 1);
+    QVERIFY2(bad.err.startsWith(broken + ": line "), qPrintable(bad.err));
+    const Run session = run_palpa({"--mode", "instructor", "--session", dir.filePath("x.palpa")});
+    QCOMPARE(session.code, 2);
+  }
+};
+
+int main(int argc, char** argv) {
+  // VTK's OpenGL wants its surface format on every Qt GL surface: before QApplication.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  InstructorWindowTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "instructor_window_test.moc"

@@ -1,0 +1,63 @@
+#pragma once
+// The instructor's body controls: the preset (breast, prostate, skin/abdomen patch,
+// generic slab), its size in mm and tissue stiffness in N/m, and the stiffness map import
+// with the range (N/m) black and white map to. Every change emits params_changed with the
+// values in SI units; the window turns it into an undoable edit of the case.
+#include <optional>
+
+#include <QGroupBox>
+
+#include "palpa/author/presets.hpp"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+
+namespace palpa::ui {
+
+class InstructorPresetPanel : public QGroupBox {
+  Q_OBJECT
+ public:
+  explicit InstructorPresetPanel(QWidget* parent = nullptr);
+
+  /// Shows `params` (nothing: the case was not made from a preset; the controls show the
+  /// breast's defaults and changing them replaces its bodies). Emits nothing.
+  void show_params(const std::optional<author::PresetParams>& params);
+  /// The parameters the controls show (SI).
+  author::PresetParams params() const;
+  /// Stiffness range (N/m) of an imported map: black -> first, white -> second.
+  double map_k_min() const;
+  double map_k_max() const;
+  /// Marks the body controls as holding a problem (red frame) with `tip` as the reason.
+  void set_problem(const QString& tip);
+
+  QComboBox* preset_box() const { return preset_; }
+  QDoubleSpinBox* width_box() const { return width_; }
+  QDoubleSpinBox* length_box() const { return length_; }
+  QDoubleSpinBox* thickness_box() const { return thickness_; }
+  QDoubleSpinBox* stiffness_box() const { return stiffness_; }
+  QPushButton* import_button() const { return import_; }
+
+ signals:
+  void params_changed(const palpa::author::PresetParams& params);
+  void import_requested();
+
+ private:
+  void set_limits(author::Preset preset);
+  void emit_params();
+
+  QComboBox* preset_ = nullptr;
+  QDoubleSpinBox* width_ = nullptr;
+  QDoubleSpinBox* length_ = nullptr;
+  QDoubleSpinBox* thickness_ = nullptr;
+  QDoubleSpinBox* stiffness_ = nullptr;
+  QDoubleSpinBox* map_min_ = nullptr;
+  QDoubleSpinBox* map_max_ = nullptr;
+  QPushButton* import_ = nullptr;
+  QLabel* note_ = nullptr;
+  int rows_ = 0, cols_ = 0;  // grid of the shown parameters (kept through edits)
+  bool updating_ = false;
+};
+
+}  // namespace palpa::ui

@@ -1,0 +1,70 @@
+#pragma once
+// What the instructor window draws: the case's bodies at rest (top and bottom contours,
+// the top optionally coloured by the interpolated stiffness, with a legend) and its
+// tumours as opaque spheres drawn in a layer over the bodies, so they show through the
+// skin without translucency (a translucent actor costs ~9 ms a frame in llvmpipe).
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <vtkSmartPointer.h>
+
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+class vtkActor;
+class vtkLookupTable;
+class vtkPolyData;
+class vtkRenderer;
+class vtkScalarBarActor;
+
+namespace palpa::ui {
+
+class InstructorScene {
+ public:
+  /// Adds its actors to `bodies` (layer 0) and `overlay` (a layer above, same camera).
+  InstructorScene(vtkRenderer* bodies, vtkRenderer* overlay);
+  ~InstructorScene();
+
+  /// Fits and draws the bodies of `file` (its tumours are ignored here). Throws
+  /// io::CaseError when a body cannot be fitted; the previous bodies stay drawn then.
+  void set_bodies(const io::CaseFile& file);
+  /// Draws these tumours (centre, radius); `selected` (an index) in another colour.
+  void set_tumours(const std::vector<mat::Tumour>& tumours, std::optional<std::size_t> selected);
+  /// Colours the top contours by stiffness (N/m) and shows the legend.
+  void set_stiffness_overlay(bool on);
+  bool stiffness_overlay() const { return overlay_on_; }
+
+  bool has_bodies() const { return scene_ != nullptr; }
+  /// The rest top contour under a ray (see trainer::TopContourPicker).
+  std::optional<trainer::SurfacePick> pick(const trainer::Vec3& origin, const trainer::Vec3& direction) const;
+  /// Bounds of the drawn body surfaces {xmin, xmax, ymin, ymax, zmin, zmax}.
+  std::array<double, 6> bounds() const;
+  std::size_t tumour_count() const { return tumours_.size(); }
+  /// Stiffness (N/m) range the overlay's colours span.
+  std::array<double, 2> stiffness_range() const { return range_; }
+  /// A body's drawn top contour (tests read its points and scalars).
+  vtkPolyData* top(std::size_t body) const;
+
+ private:
+  struct Surface {
+    vtkSmartPointer<vtkPolyData> data;
+    vtkSmartPointer<vtkActor> actor;
+  };
+  void clear_bodies();
+
+  vtkRenderer* bodies_;
+  vtkRenderer* overlay_;
+  std::unique_ptr<scene::Scene> scene_;
+  std::unique_ptr<trainer::TopContourPicker> picker_;
+  std::vector<Surface> surfaces_;  // top, bottom per body
+  std::vector<vtkSmartPointer<vtkActor>> tumours_;
+  vtkSmartPointer<vtkLookupTable> lut_;
+  vtkSmartPointer<vtkScalarBarActor> legend_;
+  std::array<double, 2> range_{0.0, 1.0};
+  bool overlay_on_ = false;
+};
+
+}  // namespace palpa::ui

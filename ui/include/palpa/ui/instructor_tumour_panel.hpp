@@ -1,0 +1,69 @@
+#pragma once
+// The instructor's tumour controls: the case's tumours in a table (one row each), the
+// depth below the skin (mm), radius (mm) and stiffness (N/m) of the selected one (or of
+// the next one a click places, when none is selected), and its randomization rule: the
+// (u, v) rectangle and the depth fraction range a seeded exercise draws its centre from.
+#include <optional>
+
+#include <QGroupBox>
+
+#include "palpa/author/case_draft.hpp"
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QPushButton;
+class QTableWidget;
+
+namespace palpa::ui {
+
+class InstructorTumourPanel : public QGroupBox {
+  Q_OBJECT
+ public:
+  explicit InstructorTumourPanel(QWidget* parent = nullptr);
+
+  /// Fills the table from the draft and shows the selected tumour's values. Emits nothing.
+  void show_draft(const author::CaseDraft& draft);
+  /// The selected tumour's row, if any.
+  std::optional<std::size_t> selected() const;
+  void select(std::optional<std::size_t> k);
+  /// Depth, radius and stiffness in the spin boxes (SI).
+  author::TumourSpec spec() const;
+  /// The rule the controls show, or nothing when randomization is off.
+  std::optional<exercise::Placement> placement() const;
+  /// Highlights rows holding a problem (red) with their reasons as tooltips; `field` is the
+  /// part of the pointer after /tumors/K ("radius", "placement/u", ...), for the controls.
+  void clear_problems();
+  void add_problem(std::size_t k, const QString& field, const QString& reason);
+
+  QTableWidget* table() const { return table_; }
+  QDoubleSpinBox* depth_box() const { return depth_; }
+  QDoubleSpinBox* radius_box() const { return radius_; }
+  QDoubleSpinBox* stiffness_box() const { return stiffness_; }
+  QCheckBox* randomize_box() const { return randomize_; }
+  /// u low, u high, v low, v high, depth low, depth high.
+  QDoubleSpinBox* rule_box(int index) const { return rule_[index]; }
+  QPushButton* remove_button() const { return remove_; }
+
+ signals:
+  void selection_changed(std::optional<std::size_t> k);
+  void spec_changed(std::size_t k, const palpa::author::TumourSpec& spec);
+  void placement_changed(std::size_t k, const std::optional<palpa::exercise::Placement>& rule);
+  void remove_requested(std::size_t k);
+
+ private:
+  void show_selected();
+  void emit_spec();
+  void emit_placement();
+
+  const author::CaseDraft* draft_ = nullptr;
+  QTableWidget* table_ = nullptr;
+  QDoubleSpinBox* depth_ = nullptr;
+  QDoubleSpinBox* radius_ = nullptr;
+  QDoubleSpinBox* stiffness_ = nullptr;
+  QCheckBox* randomize_ = nullptr;
+  QDoubleSpinBox* rule_[6] = {};
+  QPushButton* remove_ = nullptr;
+  bool updating_ = false;
+};
+
+}  // namespace palpa::ui

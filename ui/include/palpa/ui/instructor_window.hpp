@@ -1,0 +1,129 @@
+#pragma once
+// The instructor's authoring window (issue 7): a case from a preset (breast, prostate,
+// skin/abdomen patch, generic slab) with its size and stiffness, tumours placed by
+// clicking the body with their depth, size, stiffness and randomization rule, a
+// stiffness overlay, stiffness maps imported from images, undo/redo, New/Open/Save with
+// the validation problems listed by JSON pointer and the offending control highlighted,
+// and "Try it", which opens the case in a trainee window. The case itself is
+// author::CaseDraft (core); this window only shows it and turns controls into its edits.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <QMainWindow>
+#include <QPoint>
+#include <QPointer>
+
+#include <vtkSmartPointer.h>
+
+#include "palpa/author/case_draft.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+class QAction;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+class vtkGenericOpenGLRenderWindow;
+class vtkRenderer;
+
+namespace palpa::ui {
+
+class InstructorPresetPanel;
+class InstructorScene;
+class InstructorTumourPanel;
+class TraineeWindow;
+class VtkView;
+
+class InstructorWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit InstructorWindow(author::CaseDraft draft, QWidget* parent = nullptr);
+  ~InstructorWindow() override;
+
+  const author::CaseDraft& draft() const { return draft_; }
+  VtkView* view() const { return view_; }
+  InstructorPresetPanel* preset_panel() const { return preset_panel_; }
+  InstructorTumourPanel* tumour_panel() const { return tumour_panel_; }
+  /// The validation problems, one item per problem: "POINTER: reason".
+  QListWidget* problems() const { return problems_; }
+  QLineEdit* title_edit() const { return title_; }
+  const InstructorScene& scene() const { return *scene_; }
+  QAction* undo_action() const { return undo_; }
+  QAction* redo_action() const { return redo_; }
+  /// Where a scene point (m) appears in the view (widget pixels).
+  QPoint to_view(const trainer::Vec3& point) const;
+  /// Where "Try it" records its sessions (created when needed).
+  void set_sessions_dir(const std::filesystem::path& dir) { sessions_dir_ = dir; }
+  /// The newest trainee window "Try it" opened, while it is open.
+  TraineeWindow* try_window() const { return try_windows_.empty() ? nullptr : try_windows_.back().data(); }
+  /// The last message shown in the status bar (errors included).
+  const QString& message() const { return message_; }
+
+ public slots:
+  /// Opens a case for editing. A file that is JSON but not a valid case opens with its
+  /// problems listed; one that cannot be read or is not JSON leaves the current case and
+  /// returns false. Returns true when it opened.
+  bool open_case(const QString& path);
+  /// Saves to the case's file; false without one, or when the case has problems (listed).
+  bool save();
+  bool save_as(const QString& path);
+  void new_case(author::Preset preset);
+  void undo();
+  void redo();
+  /// Sets the first body's stiffness from a grayscale image, between the panel's black and
+  /// white stiffness. False (and a message) when the image cannot be read.
+  bool import_stiffness_map(const QString& path);
+  void set_stiffness_overlay(bool on);
+  /// A click at `pos` (view pixels): adds a tumour under it with the panel's depth, radius
+  /// and stiffness, or moves the selected one there (move_selected). False off the body.
+  bool click_at(const QPoint& pos, bool move_selected = false);
+  /// Opens the current case in a trainee window (seeded placement, a new session file in
+  /// the sessions directory). Nothing, with the problems listed, when it is invalid.
+  TraineeWindow* try_it();
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void build_view();
+  void build_actions();
+  /// Runs an edit of the draft; errors become a message. Then refresh().
+  void edit(const std::function<void()>& op);
+  /// Shows the draft: panels, problems, bodies (refit when they changed), tumours.
+  void refresh();
+  void show_problems(const std::vector<io::Problem>& problems);
+  void frame_camera();
+  void render();
+  void set_message(const QString& text);
+  void update_title();
+  bool confirm_discard();
+  void open_dialog();
+  void save_as_dialog();
+  void import_dialog();
+
+  author::CaseDraft draft_;
+  VtkView* view_ = nullptr;
+  InstructorPresetPanel* preset_panel_ = nullptr;
+  InstructorTumourPanel* tumour_panel_ = nullptr;
+  QListWidget* problems_ = nullptr;
+  QLineEdit* title_ = nullptr;
+  QAction* undo_ = nullptr;
+  QAction* redo_ = nullptr;
+  QAction* overlay_ = nullptr;
+  vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  vtkSmartPointer<vtkRenderer> overlay_renderer_;
+  std::unique_ptr<InstructorScene> scene_;
+  nlohmann::json drawn_bodies_;  // the "bodies" the view shows
+  std::filesystem::path sessions_dir_;
+  std::vector<QPointer<TraineeWindow>> try_windows_;
+  QString message_;
+  QPoint press_at_;
+  bool pressed_ = false;
+  int try_count_ = 0;
+};
+
+}  // namespace palpa::ui

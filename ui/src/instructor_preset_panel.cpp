@@ -1,0 +1,135 @@
+#include "palpa/ui/instructor_preset_panel.hpp"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QSignalBlocker>
+
+namespace palpa::ui {
+namespace {
+
+constexpr author::Preset kPresets[] = {author::Preset::Breast, author::Preset::Prostate, author::Preset::Patch,
+                                       author::Preset::Slab};
+
+QDoubleSpinBox* spin(QWidget* parent, const QString& suffix, int decimals) {
+  auto* box = new QDoubleSpinBox(parent);
+  box->setSuffix(suffix);
+  box->setDecimals(decimals);
+  // One edit per finished value, not one per keystroke (each is an undo step).
+  box->setKeyboardTracking(false);
+  return box;
+}
+
+}  // namespace
+
+InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Body"), parent) {
+  setObjectName("bodyPanel");
+  auto* form = new QFormLayout(this);
+  preset_ = new QComboBox(this);
+  for (auto p : kPresets) preset_->addItem(tr(author::label(p)), QString(author::to_string(p)));
+  form->addRow(tr("Preset"), preset_);
+  width_ = spin(this, tr(" mm"), 1);
+  width_->setToolTip(tr("Extent along x (the grid rows)"));
+  form->addRow(tr("Width"), width_);
+  length_ = spin(this, tr(" mm"), 1);
+  length_->setToolTip(tr("Extent along y (the grid columns)"));
+  form->addRow(tr("Length"), length_);
+  thickness_ = spin(this, tr(" mm"), 1);
+  thickness_->setToolTip(tr("Tissue thickness at the centre, skin to base"));
+  form->addRow(tr("Thickness"), thickness_);
+  stiffness_ = spin(this, tr(" N/m"), 0);
+  stiffness_->setToolTip(tr("Tissue stiffness per skeleton point (the breast's glandular centre; its fatty "
+                            "periphery is 0.4 times this)"));
+  form->addRow(tr("Stiffness"), stiffness_);
+  note_ = new QLabel(this);
+  note_->setWordWrap(true);
+  form->addRow(note_);
+
+  map_min_ = spin(this, tr(" N/m"), 0);
+  map_max_ = spin(this, tr(" N/m"), 0);
+  for (auto* box : {map_min_, map_max_}) box->setRange(0.0, 1e5);
+  map_min_->setValue(60.0);   // 3 kPa fat under a fingertip (palpation.md)
+  map_max_->setValue(600.0);  // 30 kPa, dense glandular tissue
+  map_min_->setToolTip(tr("Stiffness of black pixels"));
+  map_max_->setToolTip(tr("Stiffness of white pixels"));
+  form->addRow(tr("Map black"), map_min_);
+  form->addRow(tr("Map white"), map_max_);
+  import_ = new QPushButton(tr("Import stiffness map..."), this);
+  form->addRow(import_);
+
+  connect(preset_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
+    if (updating_ || index < 0) return;
+    const auto p = author::preset_defaults(kPresets[index]);
+    rows_ = p.rows;
+    cols_ = p.cols;
+    {
+      const QSignalBlocker blockers[] = {QSignalBlocker(width_), QSignalBlocker(length_), QSignalBlocker(thickness_),
+                                         QSignalBlocker(stiffness_)};
+      set_limits(p.preset);
+      width_->setValue(p.width * 1e3);
+      length_->setValue(p.length * 1e3);
+      thickness_->setValue(p.thickness * 1e3);
+      stiffness_->setValue(p.stiffness);
+    }
+    emit_params();
+  });
+  for (auto* box : {width_, length_, thickness_, stiffness_}) {
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_params(); });
+  }
+  connect(import_, &QPushButton::clicked, this, &InstructorPresetPanel::import_requested);
+  show_params(std::nullopt);
+}
+
+void InstructorPresetPanel::set_limits(author::Preset preset) {
+  const auto l = author::preset_limits(preset);
+  width_->setRange(l.width[0] * 1e3, l.width[1] * 1e3);
+  length_->setRange(l.length[0] * 1e3, l.length[1] * 1e3);
+  thickness_->setRange(l.thickness[0] * 1e3, l.thickness[1] * 1e3);
+  stiffness_->setRange(l.stiffness[0], l.stiffness[1]);
+}
+
+void InstructorPresetPanel::show_params(const std::optional<author::PresetParams>& params) {
+  updating_ = true;
+  const QSignalBlocker blockers[] = {QSignalBlocker(preset_), QSignalBlocker(width_), QSignalBlocker(length_),
+                                     QSignalBlocker(thickness_), QSignalBlocker(stiffness_)};
+  const auto p = params ? *params : author::preset_defaults(author::Preset::Breast);
+  for (int k = 0; k < 4; ++k) {
+    if (kPresets[k] == p.preset) preset_->setCurrentIndex(k);
+  }
+  set_limits(p.preset);
+  width_->setValue(p.width * 1e3);
+  length_->setValue(p.length * 1e3);
+  thickness_->setValue(p.thickness * 1e3);
+  stiffness_->setValue(p.stiffness);
+  rows_ = p.rows;
+  cols_ = p.cols;
+  note_->setText(params ? QString() : tr("This case was not made from a preset: changing these replaces its bodies."));
+  updating_ = false;
+}
+
+author::PresetParams InstructorPresetPanel::params() const {
+  author::PresetParams p = author::preset_defaults(kPresets[std::max(0, preset_->currentIndex())]);
+  p.width = width_->value() * 1e-3;
+  p.length = length_->value() * 1e-3;
+  p.thickness = thickness_->value() * 1e-3;
+  p.stiffness = stiffness_->value();
+  if (rows_ > 0) p.rows = rows_;
+  if (cols_ > 0) p.cols = cols_;
+  return p;
+}
+
+double InstructorPresetPanel::map_k_min() const { return map_min_->value(); }
+double InstructorPresetPanel::map_k_max() const { return map_max_->value(); }
+
+void InstructorPresetPanel::set_problem(const QString& tip) {
+  setStyleSheet(tip.isEmpty() ? QString() : QString("QGroupBox#bodyPanel { border: 2px solid #d03030; }"));
+  setToolTip(tip);
+}
+
+void InstructorPresetPanel::emit_params() {
+  if (!updating_) emit params_changed(params());
+}
+
+}  // namespace palpa::ui

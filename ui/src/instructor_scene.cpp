@@ -1,0 +1,219 @@
+#include "palpa/ui/instructor_scene.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include <vtkActor.h>
+#include <vtkCellArray.h>
+#include <vtkFloatArray.h>
+#include <vtkLookupTable.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkSphereSource.h>
+#include <vtkTextProperty.h>
+
+#include "palpa/mat/mat_body.hpp"
+#include "palpa/render/tessellation.hpp"
+
+namespace palpa::ui {
+namespace {
+
+constexpr double kTolerance = 2e-4;  // m, tessellation error
+
+// A polydata from core's mesh, with per-vertex stiffness (N/m) when `stiffness` is given.
+vtkSmartPointer<vtkPolyData> to_polydata(const render::Mesh& mesh, const std::vector<float>* stiffness) {
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  const auto n = static_cast<vtkIdType>(mesh.vertex_count());
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  normals->SetName("Normals");
+  normals->SetNumberOfTuples(n);
+  for (vtkIdType v = 0; v < n; ++v) {
+    const auto k = static_cast<std::size_t>(3 * v);
+    points->SetPoint(v, mesh.positions[k], mesh.positions[k + 1], mesh.positions[k + 2]);
+    normals->SetTuple3(v, mesh.normals[k], mesh.normals[k + 1], mesh.normals[k + 2]);
+  }
+  vtkNew<vtkCellArray> cells;
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+    const vtkIdType ids[3] = {mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]};
+    cells->InsertNextCell(3, ids);
+  }
+  data->SetPoints(points);
+  data->GetPointData()->SetNormals(normals);
+  data->SetPolys(cells);
+  if (stiffness) {
+    vtkNew<vtkFloatArray> k;
+    k->SetName("Stiffness");
+    k->SetNumberOfTuples(n);
+    for (vtkIdType v = 0; v < n; ++v) k->SetValue(v, (*stiffness)[static_cast<std::size_t>(v)]);
+    data->GetPointData()->SetScalars(k);
+  }
+  return data;
+}
+
+// The skeleton's stiffness at each vertex of a contour mesh: vertex (i, j) lies over
+// SK(i / (rows - 1), j / (cols - 1)) (fitted bodies have the knot range [0, 1]^2).
+std::vector<float> vertex_stiffness(const mat::MatBody& body, const render::Mesh& mesh) {
+  std::vector<float> out(mesh.vertex_count());
+  double sample[mat::kSkeletonChannels];
+  for (int i = 0; i < mesh.rows; ++i) {
+    for (int j = 0; j < mesh.cols; ++j) {
+      body.skeleton().evaluate(mesh.rows > 1 ? static_cast<double>(i) / (mesh.rows - 1) : 0.0,
+                               mesh.cols > 1 ? static_cast<double>(j) / (mesh.cols - 1) : 0.0, sample);
+      out[static_cast<std::size_t>(i) * static_cast<std::size_t>(mesh.cols) + static_cast<std::size_t>(j)] =
+          static_cast<float>(std::max(0.0, sample[mat::kStiffness]));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+InstructorScene::InstructorScene(vtkRenderer* bodies, vtkRenderer* overlay) : bodies_(bodies), overlay_(overlay) {
+  lut_ = vtkSmartPointer<vtkLookupTable>::New();
+  lut_->SetHueRange(0.66, 0.0);  // blue (soft) to red (stiff)
+  lut_->SetSaturationRange(0.85, 0.85);
+  lut_->SetValueRange(0.95, 0.95);
+  lut_->Build();
+  legend_ = vtkSmartPointer<vtkScalarBarActor>::New();
+  legend_->SetLookupTable(lut_);
+  legend_->SetTitle("Stiffness (N/m)");
+  legend_->SetNumberOfLabels(5);
+  legend_->SetLabelFormat("%.0f");
+  legend_->SetMaximumWidthInPixels(110);
+  legend_->GetPositionCoordinate()->SetValue(0.88, 0.1);
+  legend_->SetWidth(0.1);
+  legend_->SetHeight(0.8);
+  legend_->UnconstrainedFontSizeOn();
+  for (auto* text : {legend_->GetTitleTextProperty(), legend_->GetLabelTextProperty()}) {
+    text->SetFontSize(13);
+    text->ItalicOff();
+    text->BoldOff();
+    text->ShadowOff();
+  }
+  legend_->VisibilityOff();
+  bodies_->AddActor2D(legend_);
+}
+
+InstructorScene::~InstructorScene() = default;
+
+void InstructorScene::clear_bodies() {
+  for (auto& s : surfaces_) bodies_->RemoveActor(s.actor);
+  surfaces_.clear();
+}
+
+void InstructorScene::set_bodies(const io::CaseFile& file) {
+  io::CaseFile bodies_only = file;
+  bodies_only.tumours.clear();
+  auto scene = std::make_unique<scene::Scene>(scene::Scene::build(bodies_only, "case"));  // throws CaseError
+  auto picker = std::make_unique<trainer::TopContourPicker>(*scene);
+  clear_bodies();
+  range_ = {std::numeric_limits<double>::max(), 0.0};
+  render::TessellationOptions options;
+  options.tolerance = kTolerance;
+  for (std::size_t b = 0; b < scene->size(); ++b) {
+    const auto& body = scene->body(b).body;
+    for (int side = 0; side < 2; ++side) {
+      render::Mesh mesh;
+      render::tessellate(side == 0 ? body.top() : body.bottom(), options, side == 1, mesh);
+      std::vector<float> k;
+      if (side == 0) {
+        k = vertex_stiffness(body, mesh);
+        for (float x : k) range_ = {std::min<double>(range_[0], x), std::max<double>(range_[1], x)};
+      }
+      Surface s;
+      s.data = to_polydata(mesh, side == 0 ? &k : nullptr);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(s.data);
+      mapper->SetLookupTable(lut_);
+      mapper->SetScalarModeToUsePointData();
+      mapper->UseLookupTableScalarRangeOn();
+      mapper->SetScalarVisibility(side == 0 && overlay_on_);
+      s.actor = vtkSmartPointer<vtkActor>::New();
+      s.actor->SetMapper(mapper);
+      auto* property = s.actor->GetProperty();
+      property->SetInterpolationToPhong();
+      if (side == 0) {
+        property->SetColor(0.93, 0.74, 0.64);  // skin, as the trainee window
+      } else {
+        property->SetColor(0.70, 0.52, 0.46);
+      }
+      property->SetSpecular(0.25);
+      property->SetSpecularPower(20.0);
+      bodies_->AddActor(s.actor);
+      surfaces_.push_back(std::move(s));
+    }
+  }
+  if (range_[0] > range_[1]) range_ = {0.0, 1.0};
+  // A uniform body still gets a readable legend.
+  const double hi = range_[1] > range_[0] ? range_[1] : range_[0] + 1.0;
+  lut_->SetTableRange(range_[0], hi);
+  lut_->Build();
+  scene_ = std::move(scene);
+  picker_ = std::move(picker);
+}
+
+void InstructorScene::set_tumours(const std::vector<mat::Tumour>& tumours, std::optional<std::size_t> selected) {
+  for (auto& a : tumours_) overlay_->RemoveActor(a);
+  tumours_.clear();
+  for (std::size_t k = 0; k < tumours.size(); ++k) {
+    const auto& t = tumours[k];
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetRadius(std::max(t.radius, 1e-4));
+    sphere->SetThetaResolution(24);
+    sphere->SetPhiResolution(16);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(sphere->GetOutputPort());
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    actor->SetPosition(t.center[0], t.center[1], t.center[2]);
+    if (selected && *selected == k) {
+      actor->GetProperty()->SetColor(1.0, 0.55, 0.05);  // the tumour being edited
+    } else {
+      actor->GetProperty()->SetColor(0.55, 0.20, 0.65);
+    }
+    overlay_->AddActor(actor);
+    tumours_.push_back(actor);
+  }
+}
+
+void InstructorScene::set_stiffness_overlay(bool on) {
+  overlay_on_ = on;
+  for (std::size_t k = 0; k < surfaces_.size(); k += 2) surfaces_[k].actor->GetMapper()->SetScalarVisibility(on);
+  legend_->SetVisibility(on && !surfaces_.empty());
+}
+
+std::optional<trainer::SurfacePick> InstructorScene::pick(const trainer::Vec3& origin,
+                                                          const trainer::Vec3& direction) const {
+  if (!picker_) return std::nullopt;
+  return picker_->pick(origin, direction);
+}
+
+std::array<double, 6> InstructorScene::bounds() const {
+  std::array<double, 6> out{std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+                            std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+                            std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (const auto& s : surfaces_) {
+    double b[6];
+    s.data->GetBounds(b);
+    for (std::size_t k = 0; k < 3; ++k) {
+      out[2 * k] = std::min(out[2 * k], b[2 * k]);
+      out[2 * k + 1] = std::max(out[2 * k + 1], b[2 * k + 1]);
+    }
+  }
+  return out;
+}
+
+vtkPolyData* InstructorScene::top(std::size_t body) const {
+  return 2 * body < surfaces_.size() ? surfaces_[2 * body].data.Get() : nullptr;
+}
+
+}  // namespace palpa::ui

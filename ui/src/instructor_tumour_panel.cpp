@@ -1,0 +1,220 @@
+#include "palpa/ui/instructor_tumour_panel.hpp"
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QSignalBlocker>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+namespace palpa::ui {
+namespace {
+
+QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int decimals, const QString& suffix) {
+  auto* box = new QDoubleSpinBox(parent);
+  box->setRange(lo, hi);
+  box->setSingleStep(step);
+  box->setDecimals(decimals);
+  box->setSuffix(suffix);
+  box->setKeyboardTracking(false);  // one undo step per value, not per keystroke
+  return box;
+}
+
+const QColor kProblem(255, 200, 200);
+
+}  // namespace
+
+InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tumours"), parent) {
+  auto* layout = new QVBoxLayout(this);
+  auto* help = new QLabel(tr("Click the body to place a tumour (Shift+click moves the selected one)."), this);
+  help->setWordWrap(true);
+  layout->addWidget(help);
+  table_ = new QTableWidget(0, 4, this);
+  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("N/m"), tr("Random")});
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  table_->setSelectionMode(QAbstractItemView::SingleSelection);
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  table_->setMinimumHeight(110);
+  layout->addWidget(table_, 1);
+
+  auto* form = new QFormLayout;
+  depth_ = spin(this, 0.0, 200.0, 1.0, 1, tr(" mm"));
+  depth_->setValue(10.0);
+  depth_->setToolTip(tr("Depth of the centre below the picked skin point"));
+  radius_ = spin(this, 0.5, 50.0, 0.5, 1, tr(" mm"));
+  radius_->setValue(5.0);
+  // A ~100 kPa region under a fingertip (palpation.md, flat-punch estimate).
+  stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
+  stiffness_->setValue(2000.0);
+  form->addRow(tr("Depth"), depth_);
+  form->addRow(tr("Radius"), radius_);
+  form->addRow(tr("Stiffness"), stiffness_);
+  layout->addLayout(form);
+
+  randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
+  layout->addWidget(randomize_);
+  auto* rules = new QGridLayout;
+  const char* names[] = {"u", "v", "depth"};
+  const double defaults[] = {0.3, 0.7, 0.3, 0.7, 0.5, 0.6};  // default.json's rule
+  for (int r = 0; r < 3; ++r) {
+    rules->addWidget(new QLabel(tr(names[r]), this), r, 0);
+    for (int c = 0; c < 2; ++c) {
+      auto* box = spin(this, 0.0, 1.0, 0.05, 2, QString());
+      box->setValue(defaults[2 * r + c]);
+      box->setToolTip(r < 2 ? tr("Fraction of the body's skeleton parameter (0 to 1)")
+                            : tr("Fraction of the local thickness below the skin (0.5: on the skeleton)"));
+      rule_[2 * r + c] = box;
+      rules->addWidget(box, r, 1 + c);
+    }
+  }
+  layout->addLayout(rules);
+  remove_ = new QPushButton(tr("Remove tumour"), this);
+  layout->addWidget(remove_);
+
+  connect(table_, &QTableWidget::itemSelectionChanged, this, [this] {
+    if (updating_) return;
+    show_selected();
+    emit selection_changed(selected());
+  });
+  for (auto* box : {depth_, radius_, stiffness_}) {
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_spec(); });
+  }
+  connect(randomize_, &QCheckBox::toggled, this, [this] { emit_placement(); });
+  for (auto* box : rule_) {
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_placement(); });
+  }
+  connect(remove_, &QPushButton::clicked, this, [this] {
+    if (const auto k = selected()) emit remove_requested(*k);
+  });
+  remove_->setEnabled(false);
+}
+
+void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
+  draft_ = &draft;
+  updating_ = true;
+  const auto keep = selected();
+  const QSignalBlocker block(table_);
+  table_->setRowCount(static_cast<int>(draft.tumour_count()));
+  for (std::size_t k = 0; k < draft.tumour_count(); ++k) {
+    const auto t = draft.tumour(k);
+    const auto s = draft.spec(k);
+    const int row = static_cast<int>(k);
+    const QString cells[] = {s ? QString::number(s->depth * 1e3, 'f', 1) : QString("?"),
+                             t ? QString::number(t->radius * 1e3, 'f', 1) : QString("?"),
+                             t ? QString::number(t->stiffness, 'f', 0) : QString("?"),
+                             draft.placement(k) ? tr("yes") : tr("no")};
+    for (int c = 0; c < 4; ++c) {
+      auto* item = new QTableWidgetItem(cells[c]);
+      table_->setItem(row, c, item);
+    }
+  }
+  if (keep && *keep < draft.tumour_count()) {
+    table_->selectRow(static_cast<int>(*keep));
+  } else {
+    table_->clearSelection();
+  }
+  show_selected();
+  updating_ = false;
+}
+
+std::optional<std::size_t> InstructorTumourPanel::selected() const {
+  const auto rows = table_->selectionModel()->selectedRows();
+  if (rows.isEmpty()) return std::nullopt;
+  return static_cast<std::size_t>(rows.front().row());
+}
+
+void InstructorTumourPanel::select(std::optional<std::size_t> k) {
+  if (k && *k < static_cast<std::size_t>(table_->rowCount())) {
+    table_->selectRow(static_cast<int>(*k));
+  } else {
+    table_->clearSelection();
+  }
+}
+
+void InstructorTumourPanel::show_selected() {
+  const bool was = updating_;
+  updating_ = true;
+  const auto k = selected();
+  remove_->setEnabled(k.has_value());
+  if (k && draft_) {
+    if (const auto s = draft_->spec(*k)) {
+      depth_->setValue(s->depth * 1e3);
+      radius_->setValue(s->radius * 1e3);
+      stiffness_->setValue(s->stiffness);
+    }
+    const auto rule = draft_->placement(*k);
+    randomize_->setChecked(rule.has_value());
+    if (rule) {
+      const double values[] = {rule->u[0], rule->u[1], rule->v[0], rule->v[1], rule->depth[0], rule->depth[1]};
+      for (int c = 0; c < 6; ++c) rule_[c]->setValue(values[c]);
+    }
+  }
+  updating_ = was;
+}
+
+author::TumourSpec InstructorTumourPanel::spec() const {
+  return {depth_->value() * 1e-3, radius_->value() * 1e-3, stiffness_->value()};
+}
+
+std::optional<exercise::Placement> InstructorTumourPanel::placement() const {
+  if (!randomize_->isChecked()) return std::nullopt;
+  return exercise::Placement{{rule_[0]->value(), rule_[1]->value()},
+                             {rule_[2]->value(), rule_[3]->value()},
+                             {rule_[4]->value(), rule_[5]->value()}};
+}
+
+void InstructorTumourPanel::emit_spec() {
+  if (updating_) return;
+  if (const auto k = selected()) emit spec_changed(*k, spec());
+}
+
+void InstructorTumourPanel::emit_placement() {
+  if (updating_) return;
+  if (const auto k = selected()) emit placement_changed(*k, placement());
+}
+
+void InstructorTumourPanel::clear_problems() {
+  for (int r = 0; r < table_->rowCount(); ++r) {
+    for (int c = 0; c < table_->columnCount(); ++c) {
+      if (auto* item = table_->item(r, c)) {
+        item->setBackground(QBrush());
+        item->setToolTip(QString());
+      }
+    }
+  }
+  for (auto* box : {depth_, radius_, stiffness_}) box->setStyleSheet(QString());
+  for (auto* box : rule_) box->setStyleSheet(QString());
+}
+
+void InstructorTumourPanel::add_problem(std::size_t k, const QString& field, const QString& reason) {
+  const int row = static_cast<int>(k);
+  if (row >= table_->rowCount()) return;
+  // The cell of the field at fault, or the whole row.
+  int column = -1;
+  if (field.startsWith("center")) column = 0;
+  if (field.startsWith("radius")) column = 1;
+  if (field.startsWith("stiffness")) column = 2;
+  if (field.startsWith("placement")) column = 3;
+  for (int c = 0; c < table_->columnCount(); ++c) {
+    if (auto* item = table_->item(row, c); item && (column < 0 || c == column)) {
+      item->setBackground(kProblem);
+      item->setToolTip(reason);
+    }
+  }
+  if (selected() == k) {
+    const QString red = "background: #ffc8c8;";
+    if (column == 0 || column < 0) depth_->setStyleSheet(red);
+    if (column == 1) radius_->setStyleSheet(red);
+    if (column == 2) stiffness_->setStyleSheet(red);
+    if (column == 3) {
+      for (auto* box : rule_) box->setStyleSheet(red);
+    }
+  }
+}
+
+}  // namespace palpa::ui

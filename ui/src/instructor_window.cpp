@@ -1,0 +1,392 @@
+#include "palpa/ui/instructor_window.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <QAction>
+#include <QCloseEvent>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QKeySequence>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMouseEvent>
+#include <QScrollArea>
+#include <QStatusBar>
+#include <QToolBar>
+#include <QVBoxLayout>
+#include <QWindow>
+#include <vtkCamera.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+
+#include "palpa/ui/instructor_preset_panel.hpp"
+#include "palpa/ui/instructor_scene.hpp"
+#include "palpa/ui/instructor_tumour_panel.hpp"
+#include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/vtk_view.hpp"
+
+namespace palpa::ui {
+namespace {
+
+constexpr int kClickSlop = 4;  // px: a press and release closer than this is a click, not a drag
+
+}  // namespace
+
+InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
+    : QMainWindow(parent), draft_(std::move(draft)) {
+  resize(1280, 800);
+  auto* central = new QWidget(this);
+  auto* layout = new QHBoxLayout(central);
+  view_ = new VtkView(central);
+  // Clicks on the body place tumours; drags still turn the view (the filter passes them on).
+  view_->input()->installEventFilter(this);
+  // The problems under the view, always in sight.
+  auto* left = new QVBoxLayout;
+  left->addWidget(view_, 1);
+  auto* problems_box = new QGroupBox(tr("Problems"), central);
+  auto* problems_layout = new QVBoxLayout(problems_box);
+  problems_ = new QListWidget(problems_box);
+  problems_->setWordWrap(true);
+  problems_layout->addWidget(problems_);
+  problems_box->setFixedHeight(130);
+  left->addWidget(problems_box);
+  layout->addLayout(left, 1);
+
+  auto* side = new QWidget;
+  auto* side_layout = new QVBoxLayout(side);
+  auto* title_row = new QHBoxLayout;
+  title_row->addWidget(new QLabel(tr("Title"), side));
+  title_ = new QLineEdit(side);
+  title_->setObjectName("caseTitle");
+  title_row->addWidget(title_);
+  side_layout->addLayout(title_row);
+  preset_panel_ = new InstructorPresetPanel(side);
+  side_layout->addWidget(preset_panel_);
+  tumour_panel_ = new InstructorTumourPanel(side);
+  side_layout->addWidget(tumour_panel_, 1);
+  auto* scroll = new QScrollArea(central);
+  scroll->setWidget(side);
+  scroll->setWidgetResizable(true);
+  scroll->setFixedWidth(360);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  layout->addWidget(scroll);
+  setCentralWidget(central);
+
+  build_view();
+  build_actions();
+
+  connect(title_, &QLineEdit::editingFinished, this, [this] {
+    const std::string text = title_->text().toStdString();
+    if (text != draft_.title()) edit([this, text] { draft_.set_title(text); });
+  });
+  connect(preset_panel_, &InstructorPresetPanel::params_changed, this,
+          [this](const author::PresetParams& p) { edit([this, p] { draft_.apply_preset(p); }); });
+  connect(preset_panel_, &InstructorPresetPanel::import_requested, this, &InstructorWindow::import_dialog);
+  connect(tumour_panel_, &InstructorTumourPanel::selection_changed, this, [this](std::optional<std::size_t>) { refresh(); });
+  connect(tumour_panel_, &InstructorTumourPanel::spec_changed, this,
+          [this](std::size_t k, const author::TumourSpec& s) { edit([this, k, s] { draft_.edit_tumour(k, s); }); });
+  connect(tumour_panel_, &InstructorTumourPanel::placement_changed, this,
+          [this](std::size_t k, const std::optional<exercise::Placement>& rule) {
+            edit([this, k, rule] { draft_.set_placement(k, rule); });
+          });
+  connect(tumour_panel_, &InstructorTumourPanel::remove_requested, this, [this](std::size_t k) {
+    edit([this, k] { draft_.remove_tumour(k); });
+  });
+  // A problem in the list selects what it is about.
+  connect(problems_, &QListWidget::currentRowChanged, this, [this](int row) {
+    if (row < 0) return;
+    const QString where = problems_->item(row)->data(Qt::UserRole).toString();
+    if (where.startsWith("/tumors/")) {
+      bool ok = false;
+      const int k = where.section('/', 2, 2).toInt(&ok);
+      if (ok) tumour_panel_->select(static_cast<std::size_t>(k));
+    } else if (where.startsWith("/title")) {
+      title_->setFocus();
+    }
+  });
+
+  refresh();
+  frame_camera();
+}
+
+InstructorWindow::~InstructorWindow() {
+  for (auto& w : try_windows_) delete w.data();
+}
+
+void InstructorWindow::build_view() {
+  render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  render_window_->SetMultiSamples(0);  // software OpenGL: MSAA costs most of a frame
+  render_window_->SetNumberOfLayers(2);
+  view_->setRenderWindow(render_window_);
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->SetBackground(0.13, 0.15, 0.19);
+  renderer_->SetBackground2(0.30, 0.33, 0.40);
+  renderer_->GradientBackgroundOn();
+  render_window_->AddRenderer(renderer_);
+  // Tumours in a layer over the bodies, with the same camera: seen through the skin.
+  overlay_renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  overlay_renderer_->SetLayer(1);
+  overlay_renderer_->InteractiveOff();
+  overlay_renderer_->SetActiveCamera(renderer_->GetActiveCamera());
+  render_window_->AddRenderer(overlay_renderer_);
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  view_->interactor()->SetInteractorStyle(style);
+  scene_ = std::make_unique<InstructorScene>(renderer_, overlay_renderer_);
+}
+
+void InstructorWindow::build_actions() {
+  // "Case": the application's own File menu (ui::ModeMenu, added by app/gui) opens other
+  // windows; this one edits the case in this window.
+  auto* file = menuBar()->addMenu(tr("&Case"));
+  auto* new_menu = file->addMenu(tr("&New"));
+  for (auto p : {author::Preset::Breast, author::Preset::Prostate, author::Preset::Patch, author::Preset::Slab}) {
+    new_menu->addAction(tr(author::label(p)), this, [this, p] {
+      if (confirm_discard()) new_case(p);
+    });
+  }
+  auto* open = file->addAction(tr("&Open..."), this, &InstructorWindow::open_dialog);
+  open->setShortcut(QKeySequence::Open);
+  auto* save_action = file->addAction(tr("&Save"), this, [this] {
+    if (draft_.path().empty()) {
+      save_as_dialog();
+    } else {
+      save();
+    }
+  });
+  save_action->setShortcut(QKeySequence::Save);
+  auto* save_as_action = file->addAction(tr("Save &As..."), this, &InstructorWindow::save_as_dialog);
+  save_as_action->setShortcut(QKeySequence::SaveAs);
+  file->addSeparator();
+
+  auto* edit_menu = menuBar()->addMenu(tr("&Edit"));
+  undo_ = edit_menu->addAction(tr("&Undo"), this, &InstructorWindow::undo);
+  undo_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Z")));
+  redo_ = edit_menu->addAction(tr("&Redo"), this, &InstructorWindow::redo);
+  redo_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+Z")));
+
+  auto* view_menu = menuBar()->addMenu(tr("&View"));
+  overlay_ = view_menu->addAction(tr("Stiffness &overlay"));
+  overlay_->setCheckable(true);
+  connect(overlay_, &QAction::toggled, this, &InstructorWindow::set_stiffness_overlay);
+
+  file->addAction(tr("Import stiffness &map..."), this, &InstructorWindow::import_dialog);
+  auto* try_action = file->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
+  try_action->setShortcut(QKeySequence(QStringLiteral("F5")));  // Ctrl+T is the File menu's "Train on a case"
+
+  auto* bar = addToolBar(tr("Edit"));
+  bar->setObjectName("instructorToolbar");
+  bar->addAction(undo_);
+  bar->addAction(redo_);
+  bar->addSeparator();
+  bar->addAction(overlay_);
+  bar->addAction(try_action);
+}
+
+void InstructorWindow::edit(const std::function<void()>& op) {
+  try {
+    op();
+  } catch (const io::CaseError& e) {
+    set_message(QString::fromStdString(e.what()));
+  } catch (const std::exception& e) {
+    set_message(QString::fromStdString(e.what()));
+  }
+  refresh();
+}
+
+void InstructorWindow::refresh() {
+  update_title();
+  if (!title_->hasFocus()) title_->setText(QString::fromStdString(draft_.title()));
+  preset_panel_->show_params(draft_.preset());
+  tumour_panel_->show_draft(draft_);
+
+  // The bodies are drawn from the document without its tumours, so that a tumour's
+  // problem does not hide the body it is in.
+  const auto& doc = draft_.document();
+  const nlohmann::json bodies = doc.is_object() && doc.contains("bodies") ? doc["bodies"] : nlohmann::json();
+  if (bodies != drawn_bodies_) {
+    nlohmann::json bodies_only = doc;
+    if (bodies_only.is_object()) bodies_only.erase("tumors");
+    // Another kind of body (new ids: breast -> prostate) is framed anew; a size change
+    // keeps the camera, so the change shows.
+    const auto ids = [](const nlohmann::json& list) {
+      std::vector<nlohmann::json> out;
+      if (list.is_array()) {
+        for (const auto& b : list) out.push_back(b.is_object() && b.contains("id") ? b["id"] : nlohmann::json());
+      }
+      return out;
+    };
+    try {
+      const bool reframe = !scene_->has_bodies() || ids(bodies) != ids(drawn_bodies_);
+      scene_->set_bodies(io::parse_case(bodies_only.dump(), draft_.source()));
+      drawn_bodies_ = bodies;
+      if (reframe) frame_camera();
+    } catch (const std::exception&) {
+      // Not drawable: the problems list says why; the last good bodies stay drawn.
+    }
+  }
+  std::vector<mat::Tumour> tumours;
+  for (std::size_t k = 0; k < draft_.tumour_count(); ++k) {
+    if (auto t = draft_.tumour(k)) tumours.push_back(*t);
+  }
+  scene_->set_tumours(tumours, tumour_panel_->selected());
+  show_problems(draft_.validate());
+  undo_->setEnabled(draft_.can_undo());
+  redo_->setEnabled(draft_.can_redo());
+  render();
+}
+
+void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
+  problems_->clear();
+  tumour_panel_->clear_problems();
+  preset_panel_->set_problem(QString());
+  title_->setStyleSheet(QString());
+  for (const auto& p : problems) {
+    const QString where = QString::fromStdString(p.where);
+    const QString reason = QString::fromStdString(p.reason);
+    auto* item = new QListWidgetItem(where + ": " + reason, problems_);
+    item->setData(Qt::UserRole, where);
+    item->setForeground(QColor(170, 20, 20));
+    if (where.startsWith("/tumors/")) {
+      bool ok = false;
+      const int k = where.section('/', 2, 2).toInt(&ok);
+      if (ok) tumour_panel_->add_problem(static_cast<std::size_t>(k), where.section('/', 3), reason);
+    } else if (where.startsWith("/bodies") || where.startsWith("/preset")) {
+      preset_panel_->set_problem(reason);
+    } else if (where.startsWith("/title")) {
+      title_->setStyleSheet("background: #ffc8c8;");
+      title_->setToolTip(reason);
+    }
+  }
+  if (problems.empty()) {
+    auto* item = new QListWidgetItem(tr("No problems: the case is valid."), problems_);
+    item->setForeground(QColor(20, 120, 40));
+  }
+}
+
+void InstructorWindow::frame_camera() {
+  auto* camera = renderer_->GetActiveCamera();
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetPosition(0.0, -1.0, 0.75);  // from the front and above: the skin and the dome's profile
+  camera->SetViewUp(0.0, 0.0, 1.0);
+  if (scene_->has_bodies()) {
+    auto b = scene_->bounds();
+    renderer_->ResetCamera(b.data());
+    camera->Zoom(1.3);
+    renderer_->ResetCameraClippingRange(b.data());
+  }
+  render();
+}
+
+void InstructorWindow::render() {
+  // Room for bodies that grew since the camera was framed.
+  if (scene_->has_bodies()) {
+    auto b = scene_->bounds();
+    renderer_->ResetCameraClippingRange(b.data());
+  }
+  render_window_->Render();
+}
+
+QPoint InstructorWindow::to_view(const trainer::Vec3& point) const {
+  renderer_->SetWorldPoint(point.x(), point.y(), point.z(), 1.0);
+  renderer_->WorldToDisplay();
+  double d[3];
+  renderer_->GetDisplayPoint(d);
+  const double dpr = view_->devicePixelRatioF();
+  const int* size = render_window_->GetSize();
+  return {static_cast<int>(std::lround(d[0] / dpr)), static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr))};
+}
+
+bool InstructorWindow::click_at(const QPoint& pos, bool move_selected) {
+  const double dpr = view_->devicePixelRatioF();
+  const int* size = render_window_->GetSize();
+  const double x = pos.x() * dpr;
+  const double y = size[1] - 1 - pos.y() * dpr;
+  trainer::Vec3 ends[2];
+  for (int k = 0; k < 2; ++k) {
+    renderer_->SetDisplayPoint(x, y, k);
+    renderer_->DisplayToWorld();
+    double w[4];
+    renderer_->GetWorldPoint(w);
+    ends[k] = trainer::Vec3(w[0], w[1], w[2]) / (w[3] != 0.0 ? w[3] : 1.0);
+  }
+  const auto hit = scene_->pick(ends[0], ends[1] - ends[0]);
+  if (!hit) {
+    set_message(tr("Click on the body to place a tumour there."));
+    return false;
+  }
+  const author::SurfacePoint where{hit->body,
+                                   {hit->point.x(), hit->point.y(), hit->point.z()},
+                                   {hit->normal.x(), hit->normal.y(), hit->normal.z()}};
+  const auto selected = tumour_panel_->selected();
+  if (move_selected && selected) {
+    edit([this, k = *selected, where] { draft_.move_tumour(k, where); });
+  } else {
+    std::optional<std::size_t> added;
+    const auto spec = tumour_panel_->spec();
+    edit([this, &added, where, spec] { added = draft_.add_tumour(where, spec); });
+    if (added) {
+      tumour_panel_->select(added);
+      set_message(tr("Tumour %1 placed %2 mm below the skin.").arg(*added + 1).arg(spec.depth * 1e3, 0, 'f', 1));
+    }
+  }
+  return true;
+}
+
+bool InstructorWindow::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == view_->input()) {
+    if (event->type() == QEvent::MouseButtonPress) {
+      auto* e = static_cast<QMouseEvent*>(event);
+      if (e->button() == Qt::LeftButton) {
+        press_at_ = e->pos();
+        pressed_ = true;
+      }
+    } else if (event->type() == QEvent::MouseButtonRelease) {
+      auto* e = static_cast<QMouseEvent*>(event);
+      if (e->button() == Qt::LeftButton && pressed_) {
+        pressed_ = false;
+        if ((e->pos() - press_at_).manhattanLength() <= kClickSlop) {
+          click_at(e->pos(), e->modifiers().testFlag(Qt::ShiftModifier));
+        }
+      }
+    }
+  }
+  return QMainWindow::eventFilter(watched, event);
+}
+
+void InstructorWindow::set_stiffness_overlay(bool on) {
+  if (overlay_->isChecked() != on) overlay_->setChecked(on);  // re-enters through toggled
+  scene_->set_stiffness_overlay(on);
+  render();
+}
+
+void InstructorWindow::undo() {
+  if (draft_.undo()) {
+    set_message(tr("Undone."));
+    refresh();
+  }
+}
+
+void InstructorWindow::redo() {
+  if (draft_.redo()) {
+    set_message(tr("Redone."));
+    refresh();
+  }
+}
+
+void InstructorWindow::set_message(const QString& text) {
+  message_ = text;
+  statusBar()->showMessage(text);
+}
+
+void InstructorWindow::update_title() {
+  const QString name = draft_.path().empty() ? tr("untitled")
+                                             : QString::fromStdString(draft_.path().filename().string());
+  setWindowTitle(tr("Palpa: instructor (%1%2)").arg(name, draft_.dirty() ? "*" : ""));
+}
+
+}  // namespace palpa::ui

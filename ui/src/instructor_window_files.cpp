@@ -1,0 +1,192 @@
+// The instructor window's files: New, Open, Save (As) with validation, the stiffness map
+// import, and "Try it" (the case in a trainee window, recording a session).
+#include <cstdlib>
+#include <ctime>
+#include <random>
+
+#include <QCloseEvent>
+#include <QFileDialog>
+#include <QMessageBox>
+
+#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/ui/instructor_preset_panel.hpp"
+#include "palpa/ui/instructor_stiffness_image.hpp"
+#include "palpa/ui/instructor_window.hpp"
+#include "palpa/ui/trainee_window.hpp"
+
+namespace palpa::ui {
+namespace {
+
+std::string utc_stamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
+  return text;
+}
+
+// As palpa's trainee mode: $XDG_DATA_HOME/palpa/sessions, else ~/.local/share/palpa/sessions.
+std::filesystem::path default_sessions_dir() {
+  const char* data = std::getenv("XDG_DATA_HOME");
+  const char* home = std::getenv("HOME");
+  const std::filesystem::path base = data && *data ? std::filesystem::path(data)
+                                     : home && *home ? std::filesystem::path(home) / ".local" / "share"
+                                                     : std::filesystem::temp_directory_path();
+  return base / "palpa" / "sessions";
+}
+
+}  // namespace
+
+bool InstructorWindow::open_case(const QString& path) {
+  try {
+    draft_ = author::CaseDraft::load(path.toStdString());
+  } catch (const io::CaseError& e) {
+    // Nothing to edit (unreadable, not JSON): the current case stays.
+    show_problems(e.problems());
+    set_message(QString::fromStdString(e.lines().front()));
+    return false;
+  }
+  drawn_bodies_ = nlohmann::json();
+  refresh();
+  frame_camera();
+  const auto problems = draft_.validate();
+  set_message(problems.empty() ? tr("Opened %1.").arg(path)
+                               : tr("Opened %1: %2 problem(s), listed below.").arg(path).arg(problems.size()));
+  return true;
+}
+
+bool InstructorWindow::save() {
+  if (draft_.path().empty()) {
+    set_message(tr("The case has no file yet: use Save As."));
+    return false;
+  }
+  return save_as(QString::fromStdString(draft_.path().string()));
+}
+
+bool InstructorWindow::save_as(const QString& path) {
+  try {
+    draft_.save(path.toStdString());
+  } catch (const io::CaseError& e) {
+    show_problems(e.problems());
+    set_message(tr("Not saved: the case has %1 problem(s), listed below.").arg(e.problems().size()));
+    return false;
+  } catch (const std::exception& e) {
+    set_message(tr("Not saved: %1").arg(e.what()));
+    return false;
+  }
+  set_message(tr("Saved %1.").arg(path));
+  refresh();
+  return true;
+}
+
+void InstructorWindow::new_case(author::Preset preset) {
+  draft_ = author::CaseDraft(author::preset_defaults(preset));
+  drawn_bodies_ = nlohmann::json();
+  refresh();
+  frame_camera();
+  set_message(tr("New %1 case.").arg(tr(author::label(preset))));
+}
+
+bool InstructorWindow::import_stiffness_map(const QString& path) {
+  std::string error;
+  const auto map = read_stiffness_image(path.toStdString(), error);
+  if (!map) {
+    set_message(QString::fromStdString(error));
+    return false;
+  }
+  const double k_min = preset_panel_->map_k_min(), k_max = preset_panel_->map_k_max();
+  bool ok = false;
+  edit([&] {
+    draft_.apply_stiffness_map(0, *map, k_min, k_max);
+    ok = true;
+  });
+  if (ok) {
+    set_message(tr("Stiffness map %1 applied: %2 to %3 N/m.").arg(path).arg(k_min).arg(k_max));
+    set_stiffness_overlay(true);  // show what it did
+  }
+  return ok;
+}
+
+TraineeWindow* InstructorWindow::try_it() {
+  io::CaseFile file;
+  try {
+    file = draft_.valid_case();
+  } catch (const io::CaseError& e) {
+    show_problems(e.problems());
+    set_message(tr("Fix the problems listed below before trying the case."));
+    return nullptr;
+  }
+  trainer::LiveOptions options;
+  const char* user = std::getenv("USER");
+  options.trainee = user && *user ? user : "instructor";
+  options.mode = "instructor-try";
+  std::random_device entropy;
+  options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+  const std::filesystem::path dir = sessions_dir_.empty() ? default_sessions_dir() : sessions_dir_;
+  std::string name = "tryout-";
+  name += utc_stamp();
+  name += "-";
+  name += std::to_string(++try_count_);
+  name += ".palpa";
+  options.session_path = dir / name;
+  try {
+    std::filesystem::create_directories(dir);
+    auto exercise = std::make_unique<trainer::LiveExercise>(file, draft_.source(), options);
+    const QString case_name = draft_.path().empty() ? tr("untitled")
+                                                    : QString::fromStdString(draft_.path().filename().string());
+    auto* window = new TraineeWindow(std::move(exercise), case_name, true);
+    window->setAttribute(Qt::WA_DeleteOnClose);
+    window->show();
+    try_windows_.emplace_back(window);
+    set_message(tr("Trying the case; the session is recorded in %1.").arg(QString::fromStdString(options.session_path.string())));
+    return window;
+  } catch (const std::exception& e) {
+    set_message(tr("Could not start the exercise: %1").arg(e.what()));
+    return nullptr;
+  }
+}
+
+bool InstructorWindow::confirm_discard() {
+  if (!draft_.dirty()) return true;
+  const auto answer = QMessageBox::question(this, tr("Unsaved changes"),
+                                            tr("The case has unsaved changes. Save them first?"),
+                                            QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+  if (answer == QMessageBox::Cancel) return false;
+  if (answer == QMessageBox::Discard) return true;
+  if (draft_.path().empty()) {
+    save_as_dialog();
+  } else {
+    save();
+  }
+  return !draft_.dirty();
+}
+
+void InstructorWindow::closeEvent(QCloseEvent* event) {
+  if (confirm_discard()) {
+    event->accept();
+  } else {
+    event->ignore();
+  }
+}
+
+void InstructorWindow::open_dialog() {
+  if (!confirm_discard()) return;
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open case"), QString(), tr("Palpa cases (*.json)"));
+  if (!path.isEmpty() && !open_case(path)) QMessageBox::warning(this, tr("Cannot open"), message_);
+}
+
+void InstructorWindow::save_as_dialog() {
+  QString path = QFileDialog::getSaveFileName(this, tr("Save case"), QString(), tr("Palpa cases (*.json)"));
+  if (path.isEmpty()) return;
+  if (!path.endsWith(".json")) path += ".json";
+  if (!save_as(path)) QMessageBox::warning(this, tr("Not saved"), message_);
+}
+
+void InstructorWindow::import_dialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Import stiffness map"), QString(),
+                                                    tr("Images (*.png *.jpg *.jpeg *.bmp *.tif *.tiff);;All files (*)"));
+  if (!path.isEmpty() && !import_stiffness_map(path)) QMessageBox::warning(this, tr("Stiffness map"), message_);
+}
+
+}  // namespace palpa::ui
