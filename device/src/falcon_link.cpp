@@ -12,6 +12,7 @@
 namespace palpa::device::falcon {
 
 UsbStatus FtdiSerial::control(std::uint8_t request, std::uint16_t value, unsigned timeout_ms) {
+  if (request == ftdi::kReset && value == ftdi::kPurgeRx) carry_begin_ = carry_end_ = 0;  // stale input goes too
   return usb_->control_out(request, value, 0, timeout_ms);
 }
 
@@ -29,13 +30,17 @@ UsbStatus FtdiSerial::write(const std::uint8_t* data, std::size_t size, unsigned
 
 UsbStatus FtdiSerial::read(std::uint8_t* data, std::size_t capacity, std::size_t& got, unsigned timeout_ms) {
   got = 0;
-  std::array<std::uint8_t, ftdi::kUsbPacket> packet{};
-  std::size_t n = 0;
-  const UsbStatus status = usb_->bulk_read(packet.data(), packet.size(), n, timeout_ms);
-  if (status != UsbStatus::Ok) return status;
-  if (n <= 2) return UsbStatus::Ok;  // modem status only: no data yet
-  got = std::min(n - 2, capacity);
-  std::memcpy(data, packet.data() + 2, got);
+  if (carry_begin_ == carry_end_) {
+    std::size_t n = 0;
+    const UsbStatus status = usb_->bulk_read(carry_.data(), carry_.size(), n, timeout_ms);
+    if (status != UsbStatus::Ok) return status;
+    // The first two bytes of every packet are the modem status, not data.
+    carry_begin_ = 2;
+    carry_end_ = n > 2 ? n : 2;
+  }
+  got = std::min(carry_end_ - carry_begin_, capacity);
+  std::memcpy(data, carry_.data() + carry_begin_, got);
+  carry_begin_ += got;
   return UsbStatus::Ok;
 }
 

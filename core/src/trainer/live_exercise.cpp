@@ -121,8 +121,8 @@ double LiveExercise::now() const {
   return last_event_t_;
 }
 
-double LiveExercise::at_least_now(double t) const {
-  last_event_t_ = std::max(now(), t);
+double LiveExercise::not_before_last_event(double t) const {
+  last_event_t_ = std::max(last_event_t_, t);
   return last_event_t_;
 }
 
@@ -151,7 +151,7 @@ void LiveExercise::handle_device_switch() {
     // device has taken over. A trainee already paused needs no second pause.
     if (started_ && !finished_ && !paused_) {
       session::Event e;
-      e.t = at_least_now(fallback_.switched_at());
+      e.t = not_before_last_event(fallback_.switched_at());  // the haptic time of the unplug
       e.kind = session::EventKind::Pause;
       e.note = "device: ";
       e.note += device_note_;

@@ -134,7 +134,7 @@ class LiveExercise {
 
  private:
   double now() const;  ///< s on the haptic clock: the newest snapshot's t, never decreasing
-  double at_least_now(double t) const;  ///< t, moved up to now() so events stay in time order
+  double not_before_last_event(double t) const;  ///< t, or the last event's t if that is later
   void record(const session::Event& event);
   void handle_device_switch();
   void close_device_pause();

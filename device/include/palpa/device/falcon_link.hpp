@@ -9,6 +9,7 @@
 //   then 1,456,312 baud and a 1 ms latency timer for the 16-byte packets.
 // Firmware loading is known to be flaky: a wrong echo or a silent boot loader restarts the
 // whole sequence, up to BootOptions::attempts times.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -45,7 +46,8 @@ class FtdiSerial {
   explicit FtdiSerial(UsbTransport& usb) : usb_(&usb) {}
   UsbStatus control(std::uint8_t request, std::uint16_t value, unsigned timeout_ms = 1000);
   UsbStatus write(const std::uint8_t* data, std::size_t size, unsigned timeout_ms);
-  /// Serial data from one USB packet (possibly none: got = 0 and Ok).
+  /// Serial data: what is left of the last USB packet, else one new packet (possibly with
+  /// no data: got = 0 and Ok). Bytes beyond `capacity` are kept for the next read.
   UsbStatus read(std::uint8_t* data, std::size_t capacity, std::size_t& got, unsigned timeout_ms);
   /// Reads until `size` bytes came, or a read times out or fails.
   UsbStatus read_exactly(std::uint8_t* data, std::size_t size, std::size_t& got, unsigned timeout_ms);
@@ -54,6 +56,8 @@ class FtdiSerial {
 
  private:
   UsbTransport* usb_;
+  std::array<std::uint8_t, ftdi::kUsbPacket> carry_{};  // data of the last packet not yet read
+  std::size_t carry_begin_ = 0, carry_end_ = 0;
 };
 
 /// Reads the firmware file the user supplies (Novint's licence forbids shipping it).
