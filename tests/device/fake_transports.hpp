@@ -52,6 +52,7 @@ class FakeFalcon final : public UsbTransport {
   int corrupt_attempts = 0;        ///< ...on this many boot attempts
   bool five_byte_hello = false;    ///< answer the hello as macOS sees it (0x00 first)
   bool unplugged = false;
+  bool no_permission = false;      ///< the udev rules are missing
   UsbStatus fail_reads = UsbStatus::Ok;  ///< every read fails with this (Ok: no failure)
   bool silent = false;             ///< the firmware stops answering
 
@@ -65,6 +66,7 @@ class FakeFalcon final : public UsbTransport {
 
   UsbStatus control_out(std::uint8_t request, std::uint16_t value, std::uint16_t /*index*/, unsigned) override {
     if (unplugged) return UsbStatus::NoDevice;
+    if (no_permission) return UsbStatus::Access;
     controls.emplace_back(request, value);
     namespace f = falcon::ftdi;
     if (request == f::kBaudRate) baud_ = value;

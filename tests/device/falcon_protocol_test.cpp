@@ -154,6 +154,15 @@ TEST(FalconBoot, UnpluggedAndMissingFirmwareAreClearErrors) {
   } catch (const DeviceError& e) {
     EXPECT_STREQ(e.what(), "falcon:1-4: boot: serial setup: device unplugged");
   }
+  FakeFalcon locked(firmware.size());
+  locked.no_permission = true;
+  try {
+    boot(locked, firmware, "falcon:1-4");
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_STREQ(e.what(), "falcon:1-4: boot: serial setup: permission denied (install "
+                           "packaging/udev/70-palpa.rules, see docs/devices.md)");
+  }
   try {
     read_firmware("/nonexistent/test_firmware.bin", "falcon:1-4");
     FAIL();
