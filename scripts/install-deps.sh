@@ -4,13 +4,14 @@
 set -euo pipefail
 
 # What the current tree builds with (ui/ and app/gui: Qt 5, VTK 9, Xvfb for their tests).
-# Later layers (device/) add theirs here.
+# device/: hidapi (SpaceMouse) and libusb (Falcon), found through pkg-config.
 packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
+  pkg-config libhidapi-dev libusb-1.0-0-dev
 )
 
 missing=()

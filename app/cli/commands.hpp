@@ -25,6 +25,7 @@ Command add_simulate_command(CLI::App& parent);
 Command add_exercise_command(CLI::App& parent);
 Command add_score_command(CLI::App& parent);
 Command add_batch_command(CLI::App& parent);
+Command add_devices_command(CLI::App& parent);
 
 /// Reads and scores the session at `path`; prints the score card (or with `json` the report
 /// JSON) and writes the report files into `report_dir` when it is not empty. Returns the

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "exercise_replay.hpp"
 #include "palpa/exercise/exercise.hpp"
 #include "palpa/exercise/scripted_trainee.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
@@ -27,6 +28,7 @@ struct ExerciseCliOptions {
   std::string out_path;
   bool json = false;
   std::string report_dir;
+  std::string device = "scripted";
 };
 
 /// A seed nobody chose: every attempt meets its tumours somewhere new, and the session
@@ -37,6 +39,31 @@ std::uint64_t fresh_seed() {
 }
 
 int run_exercise_command(const ExerciseCliOptions& o) {
+  if (o.device.rfind("replay:", 0) == 0) {
+    if (!o.case_path.empty()) {
+      print_error("exercise: CASE is not used with --device replay: (the session's own case, as placed, is replayed)");
+      return kBadInput;
+    }
+    if (o.device.size() == 7) {
+      print_error("--device: replay needs a session file: replay:SESSION");
+      return kBadInput;
+    }
+    return run_replay_exercise(o.device.substr(7), o.trainee, o.out_path, o.json, o.report_dir);
+  }
+  if (o.device != "scripted") {
+    print_error("--device: " + o.device +
+                ": a headless exercise is scripted or replay:SESSION; a live device palpates in the GUI (palpa "
+                "--device ID)");
+    return kBadInput;
+  }
+  if (o.case_path.empty()) {
+    print_error("exercise: CASE is required (except with --device replay:SESSION)");
+    return kBadInput;
+  }
+  if (o.trainee.empty()) {
+    print_error("exercise: --trainee is required");
+    return kBadInput;
+  }
   const auto style = exercise::style_from_string(o.style);
   if (!style) {
     print_error("--style: unknown style \"" + o.style + "\" (expert, sloppy or light)");
@@ -94,9 +121,8 @@ Command add_exercise_command(CLI::App& parent) {
       "Run a whole scripted exercise on CASE: a scripted trainee palpates through the haptic engine at 1 kHz "
       "(deterministic, as fast as possible), the session is recorded to --out and scored; the score card "
       "(or --json) goes to standard output. Tumours with a placement rule are placed from --seed.");
-  app->add_option("CASE", o->case_path, "case file (JSON)")->required();
-  app->add_option("--trainee", o->trainee, "trainee id recorded in the session")
-      ->required()
+  app->add_option("CASE", o->case_path, "case file (JSON); not with --device replay:");
+  app->add_option("--trainee", o->trainee, "trainee id recorded in the session (with replay: default the recorded one)")
       ->check([](const std::string& id) { return id.empty() ? std::string("must not be empty") : std::string(); });
   app->add_option("--style", o->style,
                   "expert: strips a finger pad apart at light, medium and deep pressure, marks what it feels; "
@@ -108,6 +134,10 @@ Command add_exercise_command(CLI::App& parent) {
       ->check(CLI::NonNegativeNumber);
   app->add_option("--out", o->out_path, "session file to create (never overwritten; suggested extension .palpa)")
       ->required();
+  app->add_option("--device", o->device,
+                  "who palpates: scripted (default: the scripted trainee of --style) or replay:SESSION (re-scoring: "
+                  "the recorded probe path of SESSION palpates its recorded case through this engine again, with its "
+                  "marks; the new session goes to --out)");
   app->add_flag("--json", o->json, "print the score report as JSON instead of the score card");
   app->add_option("--report", o->report_dir,
                   "also write the session's report into this folder: STEM.html (maps and force plot), STEM.json, "

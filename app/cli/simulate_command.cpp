@@ -10,6 +10,9 @@
 #include <chrono>
 #include <thread>
 
+#include "palpa/device/device_error.hpp"
+#include "palpa/device/registry.hpp"
+#include "palpa/device/replay_device.hpp"
 #include "palpa/engine/engine.hpp"
 #include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
@@ -17,6 +20,7 @@
 #include "palpa/io/csv.hpp"
 #include "palpa/io/json_text.hpp"
 #include "palpa/exercise/exercise.hpp"
+#include "palpa/session/session.hpp"
 #include "palpa/session/session_writer.hpp"
 #include "palpa/version.hpp"
 #include "simulate_output.hpp"
@@ -36,6 +40,9 @@ struct SimulateOptions {
   bool realtime = false;
   bool no_dynamics = false;
   bool no_shear = false;
+  std::string device;      ///< instead of --trajectory: replay:SESSION, or a live device with --realtime
+  double duration = 0.0;   ///< s, with a live device
+  std::string falcon_firmware;
 };
 
 // Reads a `t,x,y,z` file: times must increase (trajectory) or not decrease (marks).
@@ -77,8 +84,48 @@ int run_simulate(const SimulateOptions& o) {
     for (const auto& line : e.lines()) print_error(line);
     return kBadInput;
   }
+  if (o.trajectory_path.empty() == o.device.empty()) {
+    print_error("simulate: give either --trajectory or --device (see palpa-cli simulate --help)");
+    return kBadInput;
+  }
   engine::Trajectory trajectory;
-  if (!read_timed_points(o.trajectory_path, true, trajectory)) return kBadInput;
+  if (!o.trajectory_path.empty() && !read_timed_points(o.trajectory_path, true, trajectory)) return kBadInput;
+  // A device instead of the trajectory: a replayed session (its duration) or a live one
+  // (--realtime for --duration seconds, its workspace over the first body).
+  std::unique_ptr<engine::Device> chosen;
+  double duration = trajectory.duration();
+  if (!o.device.empty()) {
+    const bool replay = o.device.rfind("replay:", 0) == 0;
+    if (!replay && (!o.realtime || !(o.duration > 0.0))) {
+      print_error("--device " + o.device + ": a live device needs --realtime and --duration SECONDS");
+      return kBadInput;
+    }
+    if (o.device == "virtual") {
+      print_error("--device virtual: nothing steers the virtual device here (the GUI's mouse does)");
+      return kBadInput;
+    }
+    try {
+      device::OpenOptions open;
+      open.falcon.firmware = o.falcon_firmware;
+      open.progress = [](const std::string& line) { std::fprintf(stderr, "simulate: %s\n", line.c_str()); };
+      chosen = device::open_device(o.device, open);
+    } catch (const device::DeviceError& e) {
+      print_error(e.what());
+      return kBadInput;
+    } catch (const session::SessionError& e) {
+      print_error(e.what());
+      return kBadInput;
+    }
+    if (replay) {
+      duration = dynamic_cast<device::ReplayDevice&>(*chosen).duration();
+    } else {
+      duration = o.duration;
+      if (scene->size() > 0) {
+        const auto& b = scene->body(0).bounds;
+        chosen->place_workspace(engine::Vec3(0.5 * (b.lo.x() + b.hi.x()), 0.5 * (b.lo.y() + b.hi.y()), b.hi.z()), 1.0);
+      }
+    }
+  }
   engine::Trajectory marks;
   if (!o.marks_path.empty() && !read_timed_points(o.marks_path, false, marks)) return kBadInput;
 
@@ -86,7 +133,8 @@ int run_simulate(const SimulateOptions& o) {
   options.rate_hz = o.rate;
   options.dynamics = !o.no_dynamics;
   options.shear = !o.no_shear;
-  engine::ScriptedDevice device(trajectory);
+  engine::ScriptedDevice scripted(trajectory);
+  engine::Device& device = chosen ? *chosen : scripted;
   engine::Engine eng(*scene, device, options);
 
   std::unique_ptr<SampleCsvWriter> writer;
@@ -107,7 +155,12 @@ int run_simulate(const SimulateOptions& o) {
     info.rate_hz = o.rate;
     info.case_source = o.case_path;
     info.case_document = io::to_json(case_file);
-    info.extra = {{"recorded_by", "palpa-cli simulate"}, {"trajectory", o.trajectory_path}};
+    info.extra = {{"recorded_by", "palpa-cli simulate"}};
+    if (o.device.empty()) {
+      info.extra["trajectory"] = o.trajectory_path;
+    } else {
+      info.extra["device_id"] = o.device;
+    }
     try {
       recording = std::make_unique<session::SessionWriter>(o.session_path, info);
       session::Event start;
@@ -147,7 +200,7 @@ int run_simulate(const SimulateOptions& o) {
     auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
     auto& loop = *loop_owner;
     std::fprintf(stderr, "%s\n", loop.start().c_str());
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(trajectory.duration());
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration);
     engine::Sample s;
     while (std::chrono::steady_clock::now() < end) {
       while (loop.pop_sample(s)) write(s);
@@ -161,7 +214,7 @@ int run_simulate(const SimulateOptions& o) {
                    static_cast<unsigned long long>(loop.dropped_samples()));
     }
   } else {
-    engine::run_fast(eng, trajectory.duration(), write);
+    engine::run_fast(eng, duration, write);
   }
   if (writer && !writer->close()) {
     print_error(o.out_path + ": write failed (disk full?)");
@@ -176,12 +229,12 @@ int run_simulate(const SimulateOptions& o) {
     session::Event end;
     end.kind = session::EventKind::End;
     end.t = last_t;
-    end.note = "trajectory ended";
+    end.note = o.device.empty() ? "trajectory ended" : "device run ended";
     recording->event(end);
     recording->finish();
   }
   std::fprintf(stderr, "simulate: %llu ticks at %.0f Hz (%.3f s of trajectory) written to %s\n",
-               static_cast<unsigned long long>(ticks), o.rate, trajectory.duration(),
+               static_cast<unsigned long long>(ticks), o.rate, duration,
                (o.out_path.empty() ? o.session_path : o.out_path).c_str());
   return kOk;
 }
@@ -196,7 +249,15 @@ Command add_simulate_command(CLI::App& parent) {
                   "t,x,y,z,fx,fy,fz,body,u,v,depth,buttons,overrun,fault, and/or record it as a session (--session). "
                   "--fast (the default) is deterministic: the same inputs give the same bytes.");
   app->add_option("CASE", o->case_path, "case file (JSON)")->required();
-  app->add_option("--trajectory", o->trajectory_path, "probe trajectory CSV: t,x,y,z")->required();
+  app->add_option("--trajectory", o->trajectory_path, "probe trajectory CSV: t,x,y,z (or --device)");
+  app->add_option("--device", o->device,
+                  "drive the probe with a device instead of --trajectory: replay:SESSION (the probe path of a "
+                  "recorded session, for its duration), or a live device from palpa-cli devices (spacemouse..., "
+                  "falcon...) with --realtime for --duration seconds, its workspace over the first body");
+  app->add_option("--duration", o->duration, "s: how long to run a live --device")->check(CLI::PositiveNumber);
+  app->add_option("--falcon-firmware", o->falcon_firmware,
+                  "the Novint Falcon's firmware file (from Novint's driver package; Palpa cannot ship it), uploaded "
+                  "when --device is a Falcon (docs/devices.md)");
   app->add_option("--out", o->out_path, "output CSV of samples");
   app->add_option(
       "--session", o->session_path,

@@ -37,7 +37,10 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   DevicePose pose;
   DeviceStatus status = device_->read(t, pose);
   if (status == DeviceStatus::Ok && !pose.position.allFinite()) status = DeviceStatus::Error;  // garbage is a fault
-  if (status == DeviceStatus::Ok) s.position = {pose.position.x(), pose.position.y(), pose.position.z()};
+  // On a fault the probe stays where it was last seen (not at the origin): review and the
+  // GUI draw it there while the force ramps down.
+  if (status == DeviceStatus::Ok) last_position_ = {pose.position.x(), pose.position.y(), pose.position.z()};
+  s.position = last_position_;
   s.buttons = pose.buttons;
   s.fault = hold_fault || status != DeviceStatus::Ok;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "palpa/exercise/exercise.hpp"
@@ -39,7 +40,10 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       scene_(std::make_unique<scene::Scene>(scene::Scene::build(placed_, case_source))),
       thresholds_(thresholds_of(placed_, case_source)),
       device_(options.device_settling),
-      engine_(std::make_unique<engine::Engine>(*scene_, device_, options.engine)),
+      primary_(options.device),
+      // Held at least twice the ramp time, so the force is at zero before the virtual device takes over.
+      fallback_(primary_.get(), device_, 2.0 * options.engine.safety.ramp_time),
+      engine_(std::make_unique<engine::Engine>(*scene_, fallback_, options.engine)),
       loop_(std::make_unique<engine::RealtimeLoop>(*engine_, options.realtime)),
       meshes_(*scene_, options.tessellation),
       picker_(*scene_) {
@@ -50,6 +54,8 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
     const Vec3 above(0.5 * (bounds.lo.x() + bounds.hi.x()), 0.5 * (bounds.lo.y() + bounds.hi.y()),
                      bounds.hi.z() + 0.05);
     device_.set_target(above);
+    // A chosen device's workspace goes over the middle of the first body's top.
+    if (primary_) primary_->place_workspace(Vec3(above.x(), above.y(), bounds.hi.z()), options_.device_scale);
   }
 }
 
@@ -61,7 +67,7 @@ LiveExercise::~LiveExercise() {
 std::string LiveExercise::start() {
   if (started_) throw std::logic_error("the exercise has already started");
   auto info = exercise::exercise_session_info(placed_, case_source_, options_.seed, exercise::Style::Expert,
-                                              options_.trainee, device_.capabilities().name,
+                                              options_.trainee, fallback_.capabilities().name,
                                               exercise::iso8601_utc_now(), options_.engine.rate_hz);
   info.extra = nlohmann::json::object();  // not a scripted exercise: no style, the GUI mode instead
   info.extra["mode"] = options_.mode;
@@ -78,9 +84,15 @@ std::string LiveExercise::start() {
   return scheduling;
 }
 
-void LiveExercise::set_probe_target(const Vec3& target) { device_.set_target(target); }
+void LiveExercise::set_probe_target(const Vec3& target) {
+  // While a chosen device drives the probe the target waits; after a switch the virtual
+  // device starts from the chosen device's last pose (handle_device_switch), then follows.
+  if (primary_ && !switch_seen_) return;
+  device_.set_target(target);
+}
 
 bool LiveExercise::update() {
+  handle_device_switch();
   if (!loop_->update_snapshot()) return false;
   meshes_.update(loop_->snapshot());
   return true;
@@ -107,6 +119,58 @@ ContactInfo LiveExercise::contact() const {
 double LiveExercise::now() const {
   last_event_t_ = std::max(last_event_t_, loop_->snapshot().t);
   return last_event_t_;
+}
+
+double LiveExercise::not_before_last_event(double t) const {
+  last_event_t_ = std::max(last_event_t_, t);
+  return last_event_t_;
+}
+
+void LiveExercise::handle_device_switch() {
+  if (!primary_ || !fallback_.switched()) return;
+  if (!switch_seen_) {
+    switch_seen_ = true;
+    const std::string& name = primary_->capabilities().name;
+    const bool unplugged = fallback_.switch_status() == engine::DeviceStatus::Disconnected;
+    device_message_ = name;
+    device_message_ += unplugged ? " disconnected: using the mouse" : " failed: using the mouse";
+    const std::string reason = fallback_.fault_message();
+    if (!reason.empty()) {
+      device_message_ += " (";
+      device_message_ += reason;
+      device_message_ += ")";
+    }
+    // The virtual device takes over where the chosen one was last seen.
+    device_.set_target(fallback_.last_position());
+    fallback_.resume();
+    char at[64];
+    std::snprintf(at, sizeof at, " at t = %.3f s", fallback_.switched_at());
+    device_note_ = device_message_;
+    device_note_ += at;
+    // Recorded as a pause: the force ramps to zero and nothing is palpated until the virtual
+    // device has taken over. A trainee already paused needs no second pause.
+    if (started_ && !finished_ && !paused_) {
+      session::Event e;
+      e.t = not_before_last_event(fallback_.switched_at());  // the haptic time of the unplug
+      e.kind = session::EventKind::Pause;
+      e.note = "device: ";
+      e.note += device_note_;
+      record(e);
+      device_pause_open_ = true;
+    }
+  }
+  if (device_pause_open_ && fallback_.on_fallback()) close_device_pause();
+}
+
+void LiveExercise::close_device_pause() {
+  if (!device_pause_open_) return;
+  device_pause_open_ = false;
+  session::Event e;
+  e.t = now();
+  e.kind = session::EventKind::Resume;
+  e.note = "device: continuing with ";
+  e.note += device_.capabilities().name;
+  record(e);
 }
 
 void LiveExercise::record(const session::Event& event) { recorder_->event(event); }
@@ -143,6 +207,7 @@ bool LiveExercise::remove_mark(std::int64_t id) {
 
 void LiveExercise::pause(bool paused) {
   if (!started_ || finished_ || paused == paused_) return;
+  close_device_pause();  // the trainee's pause follows the device's, never nests in it
   loop_->pause(paused);
   paused_ = paused;
   session::Event e;
@@ -154,11 +219,19 @@ void LiveExercise::pause(bool paused) {
 score::Score LiveExercise::finish(const std::string& note) {
   if (!started_) throw std::logic_error("the exercise has not started");
   if (finished_) throw std::logic_error("the exercise has already finished");
+  handle_device_switch();
+  close_device_pause();
   finished_ = true;
   loop_->stop();
   loop_->update_snapshot();
   const double t_end = now();
-  recorder_->finish(t_end, note);
+  std::string end_note = note;
+  if (!device_note_.empty()) {
+    end_note += " (device: ";
+    end_note += device_note_;
+    end_note += ")";
+  }
+  recorder_->finish(t_end, end_note);
   const std::string error = recorder_->error();
   if (!error.empty()) throw session::SessionError(options_.session_path.string(), "recorder", error);
   const auto recorded = session::read_session(options_.session_path);

@@ -36,6 +36,19 @@ class Device {
   /// The pose at time t (s since the engine started).
   virtual DeviceStatus read(double t, DevicePose& pose) noexcept = 0;
   virtual DeviceStatus write_force(const Vec3& force) noexcept = 0;
+
+  /// Where a device with a workspace of its own (a SpaceMouse, a Falcon) sits in the scene:
+  /// its workspace centre goes to `scene_center` (m) and one device metre becomes `scale`
+  /// scene metres. Called before the haptic loop starts, never while it runs. Devices that
+  /// already report scene coordinates (virtual, scripted, replay) ignore it.
+  virtual void place_workspace(const Vec3& scene_center, double scale) {
+    (void)scene_center;
+    (void)scale;
+  }
+  /// One line saying why the device last reported Error or Disconnected (empty when it has
+  /// not), e.g. "SpaceMouse Pro: read failed: the device was unplugged". Not for the haptic
+  /// thread: it may allocate and lock.
+  virtual std::string fault_message() const { return {}; }
 };
 
 }  // namespace palpa::engine

@@ -74,6 +74,7 @@ class Engine {
   double last_t_ = 0.0;
   bool started_ = false;
   int pressed_ = -1;  // body pressed at the last tick
+  std::array<double, 3> last_position_{};  // the probe at the last tick the device read Ok
 };
 
 /// Runs ticks at t = k / rate for k = 0 .. duration * rate as fast as the machine allows

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/engine/fallback_device.hpp"
 #include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
@@ -34,6 +35,13 @@ struct LiveOptions {
   engine::EngineOptions engine{};
   engine::RealtimeOptions realtime{};
   double device_settling = 0.03;      ///< s: how softly the virtual probe follows the pointer
+  /// The device the trainee palpates with (device/: a SpaceMouse, a Falcon, a replay);
+  /// null: the virtual device the pointer steers. Its workspace is placed over the first
+  /// body (centre of its rest box, top) at `device_scale` scene metres per device metre.
+  /// If it faults (unplugged) the force ramps to zero and the virtual device takes over at
+  /// its last pose; the session goes on (see device_switched()).
+  std::shared_ptr<engine::Device> device;
+  double device_scale = 1.0;
   double commit_interval = 0.25;      ///< s between session commits
   render::TessellationOptions tessellation{};
 };
@@ -74,10 +82,12 @@ class LiveExercise {
   bool started() const { return started_; }
   bool finished() const { return finished_; }
 
-  /// Where the probe should go (m); the virtual device follows it smoothly.
+  /// Where the probe should go (m); the virtual device follows it smoothly. Without effect
+  /// while a chosen device (LiveOptions::device) is in use.
   void set_probe_target(const Vec3& target);
   /// Takes the newest snapshot, if a new one arrived, and re-tessellates the bodies whose
-  /// version changed (meshes().changed(b)); returns true when a new snapshot arrived.
+  /// version changed (meshes().changed(b)); returns true when a new snapshot arrived. Also
+  /// handles a device switch (device_switched()).
   bool update();
   const engine::SceneSnapshot& snapshot() const { return loop_->snapshot(); }
   /// The drawn bodies as of the last update() (at rest before start()).
@@ -109,7 +119,13 @@ class LiveExercise {
 
   /// Loop statistics published by the haptic thread (GUI thread only).
   const engine::LoopStats& loop_stats() { return loop_->stats(); }
-  const std::string& device_name() const { return device_.capabilities().name; }
+  /// The device in use: the chosen one, or the virtual device after a switch.
+  const std::string& device_name() const { return fallback_.active_name(); }
+  /// The chosen device faulted and the virtual device took over (seen by update()).
+  bool device_switched() const { return switch_seen_; }
+  /// For the GUI, once device_switched(): e.g. "SpaceMouse Pro disconnected: using the
+  /// mouse (SpaceMouse Pro: read failed: ...)". Empty before.
+  const std::string& device_message() const { return device_message_; }
   const scene::Scene& scene() const { return *scene_; }
   const io::CaseFile& placed_case() const { return placed_; }
   const score::Thresholds& thresholds() const { return thresholds_; }
@@ -118,7 +134,10 @@ class LiveExercise {
 
  private:
   double now() const;  ///< s on the haptic clock: the newest snapshot's t, never decreasing
+  double not_before_last_event(double t) const;  ///< t, or the last event's t if that is later
   void record(const session::Event& event);
+  void handle_device_switch();
+  void close_device_pause();
 
   LiveOptions options_;
   std::string case_source_;
@@ -126,6 +145,8 @@ class LiveExercise {
   std::unique_ptr<scene::Scene> scene_;
   score::Thresholds thresholds_;
   engine::VirtualDevice device_;
+  std::shared_ptr<engine::Device> primary_;
+  engine::FallbackDevice fallback_;
   std::unique_ptr<engine::Engine> engine_;
   std::unique_ptr<engine::RealtimeLoop> loop_;
   std::unique_ptr<session::SessionWriter> writer_;
@@ -138,6 +159,10 @@ class LiveExercise {
   bool started_ = false;
   bool finished_ = false;
   bool paused_ = false;
+  bool switch_seen_ = false;          // update() saw the fallback switch
+  bool device_pause_open_ = false;    // a Pause event for the switch awaits its Resume
+  std::string device_message_;
+  std::string device_note_;           // what finish() adds to the End note
 };
 
 }  // namespace palpa::trainer

@@ -1,0 +1,104 @@
+#pragma once
+// The Novint Falcon as the probe, with force output. connect() boots the firmware
+// (falcon_link.hpp); the I/O thread then exchanges one packet each way per haptic period:
+// the newest motor torques out, the encoders and buttons in. Until the three axes report
+// homed it sends homing mode (red LED) and no torque: the trainee moves the grip all the
+// way out and back in once. The haptic thread turns encoders into a position (forward
+// kinematics) and a force into torques (J^T F), passing both through triple buffers.
+// Unplugging shows as Disconnected; a silent or failing firmware as Error.
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "palpa/device/falcon_kinematics.hpp"
+#include "palpa/device/falcon_link.hpp"
+#include "palpa/device/falcon_packet.hpp"
+#include "palpa/engine/device.hpp"
+#include "palpa/engine/triple_buffer.hpp"
+
+namespace palpa::device {
+
+struct FalconOptions {
+  std::filesystem::path firmware;  ///< the user's firmware file; empty: it must be running already
+  falcon::BootOptions boot{};
+  double max_force = 8.0;          ///< N (palpation.md, "Haptic devices")
+  double rate_hz = 1000.0;         ///< packets per second
+  int silent_exchanges = 100;      ///< exchanges without a packet before the firmware counts as gone
+};
+
+class FalconDevice final : public engine::Device {
+ public:
+  FalconDevice(std::unique_ptr<UsbTransport> transport, std::string device_id, const FalconOptions& options = {});
+  ~FalconDevice() override;  ///< stops the I/O thread (zero torque first)
+  FalconDevice(const FalconDevice&) = delete;
+  FalconDevice& operator=(const FalconDevice&) = delete;
+
+  /// Uploads the firmware, or with no firmware file checks that it is running. Returns the
+  /// boot attempts it took (0: found running). Throws DeviceError.
+  int connect();
+  /// Starts the I/O thread at rate_hz (exchange() in a loop until stopped or failed).
+  void start();
+  void stop();
+  /// One exchange: sends the newest command, takes the packets that came back. False once
+  /// the device is gone or failed. Tests call it directly instead of start().
+  bool exchange(unsigned timeout_ms = 2);
+
+  bool homed() const { return homed_.load(std::memory_order_acquire); }
+  std::uint64_t packets() const { return packets_.load(std::memory_order_relaxed); }
+  std::uint64_t bad_packets() const { return reader_bad_.load(std::memory_order_relaxed); }
+
+  const engine::DeviceCapabilities& capabilities() const override { return caps_; }
+  engine::DeviceStatus read(double t, engine::DevicePose& pose) noexcept override;
+  engine::DeviceStatus write_force(const engine::Vec3& force) noexcept override;
+  void place_workspace(const engine::Vec3& scene_center, double scale) override;
+  std::string fault_message() const override;
+
+  /// Device frame (falcon_kinematics.hpp) <-> scene, with the placement.
+  engine::Vec3 to_scene(const falcon::Vec3& device_position) const;
+  falcon::Vec3 force_to_device(const engine::Vec3& scene_force) const;
+  /// The torque words the haptic thread last asked for (tests).
+  std::array<std::int16_t, 3> commanded_torque() const;
+
+ private:
+  struct Reading {
+    std::array<std::int16_t, 3> encoder{};
+    std::uint8_t flags = 0;
+    std::uint64_t count = 0;  ///< 0: nothing read yet
+  };
+  struct Command {
+    std::array<std::int16_t, 3> torque{};
+  };
+  void fail(engine::DeviceStatus status, const std::string& message);
+  void send_zero_torque();
+
+  std::unique_ptr<UsbTransport> transport_;
+  falcon::FtdiSerial serial_;
+  std::string id_;
+  FalconOptions options_;
+  engine::DeviceCapabilities caps_;
+  falcon::Kinematics kinematics_;
+  double scale_ = 1.0;
+  // I/O thread
+  falcon::PacketReader reader_;
+  Reading io_reading_;
+  int silent_ = 0;
+  int failures_ = 0;
+  engine::TripleBuffer<Reading> readings_{Reading{}};
+  engine::TripleBuffer<Command> commands_{Command{}};
+  std::atomic<bool> homed_{false};
+  std::atomic<std::uint64_t> packets_{0};
+  std::atomic<std::uint64_t> reader_bad_{0};
+  std::atomic<engine::DeviceStatus> status_{engine::DeviceStatus::Ok};
+  mutable std::mutex message_mutex_;  // I/O and GUI threads only
+  std::string fault_message_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  // haptic thread
+  falcon::Vec3 device_position_ = falcon::Kinematics::workspace_center();
+  std::atomic<std::int16_t> t0_{0}, t1_{0}, t2_{0};
+};
+
+}  // namespace palpa::device

@@ -1,0 +1,223 @@
+#include "palpa/device/falcon_link.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "palpa/device/device_error.hpp"
+#include "palpa/device/falcon_packet.hpp"
+
+namespace palpa::device::falcon {
+
+UsbStatus FtdiSerial::control(std::uint8_t request, std::uint16_t value, unsigned timeout_ms) {
+  if (request == ftdi::kReset && value == ftdi::kPurgeRx) carry_begin_ = carry_end_ = 0;  // stale input goes too
+  return usb_->control_out(request, value, 0, timeout_ms);
+}
+
+UsbStatus FtdiSerial::write(const std::uint8_t* data, std::size_t size, unsigned timeout_ms) {
+  std::size_t done = 0;
+  while (done < size) {
+    std::size_t written = 0;
+    const UsbStatus status = usb_->bulk_write(data + done, size - done, written, timeout_ms);
+    if (status != UsbStatus::Ok) return status;
+    if (written == 0) return UsbStatus::Timeout;
+    done += written;
+  }
+  return UsbStatus::Ok;
+}
+
+UsbStatus FtdiSerial::read(std::uint8_t* data, std::size_t capacity, std::size_t& got, unsigned timeout_ms) {
+  got = 0;
+  if (carry_begin_ == carry_end_) {
+    std::size_t n = 0;
+    const UsbStatus status = usb_->bulk_read(carry_.data(), carry_.size(), n, timeout_ms);
+    if (status != UsbStatus::Ok) return status;
+    // The first two bytes of every packet are the modem status, not data.
+    carry_begin_ = 2;
+    carry_end_ = n > 2 ? n : 2;
+  }
+  got = std::min(carry_end_ - carry_begin_, capacity);
+  std::memcpy(data, carry_.data() + carry_begin_, got);
+  carry_begin_ += got;
+  return UsbStatus::Ok;
+}
+
+UsbStatus FtdiSerial::read_exactly(std::uint8_t* data, std::size_t size, std::size_t& got, unsigned timeout_ms) {
+  got = 0;
+  // An FTDI chip answers an empty read every latency period: give up after a few in a row.
+  int empty = 0;
+  while (got < size) {
+    std::size_t n = 0;
+    const UsbStatus status = read(data + got, size - got, n, timeout_ms);
+    if (status != UsbStatus::Ok) return status;
+    if (n == 0 && ++empty > 64) return UsbStatus::Timeout;
+    if (n > 0) empty = 0;
+    got += n;
+  }
+  return UsbStatus::Ok;
+}
+
+UsbStatus FtdiSerial::enter_firmware_mode() {
+  for (const auto& [request, value] : std::array<std::pair<std::uint8_t, std::uint16_t>, 4>{{
+           {ftdi::kLatencyTimer, 1},
+           {ftdi::kBaudRate, ftdi::kBaudFirmware},
+           {ftdi::kReset, ftdi::kPurgeRx},
+           {ftdi::kReset, ftdi::kPurgeTx},
+       }}) {
+    const UsbStatus status = control(request, value);
+    if (status != UsbStatus::Ok) return status;
+  }
+  return UsbStatus::Ok;
+}
+
+std::vector<std::uint8_t> read_firmware(const std::filesystem::path& path, const std::string& device_id) {
+  const std::string hint =
+      " (Palpa cannot ship the Falcon's firmware: give the file from Novint's driver package, e.g. "
+      "test_firmware.bin or nVent_firmware.bin, with --falcon-firmware; see docs/devices.md)";
+  if (path.empty()) throw DeviceError(device_id, "firmware", "no firmware file given" + hint);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw DeviceError(device_id, "firmware", path.string() + " is not a file" + hint);
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DeviceError(device_id, "firmware", path.string() + " cannot be read");
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty()) throw DeviceError(device_id, "firmware", path.string() + " is empty");
+  return bytes;
+}
+
+namespace {
+
+// One pass of the boot sequence. Returns an empty string on success, else why it failed;
+// throws for what no retry can mend (unplugged, no permission).
+std::string boot_once(FtdiSerial& serial, const std::vector<std::uint8_t>& firmware, const std::string& device_id,
+                      const BootOptions& options) {
+  const auto fatal = [&](UsbStatus status, const char* step) {
+    if (status == UsbStatus::NoDevice || status == UsbStatus::Access) {
+      std::string reason = step;
+      reason += ": ";
+      reason += to_string(status);
+      throw DeviceError(device_id, "boot", reason);
+    }
+  };
+  const auto failed = [](UsbStatus status, const char* step) {
+    std::string reason = step;
+    reason += ": ";
+    reason += to_string(status);
+    return reason;
+  };
+  for (const auto& [request, value] : std::array<std::pair<std::uint8_t, std::uint16_t>, 8>{{
+           {ftdi::kReset, ftdi::kPurgeRx},
+           {ftdi::kReset, ftdi::kPurgeTx},
+           {ftdi::kLatencyTimer, 16},
+           {ftdi::kBaudRate, ftdi::kBaud9600},
+           {ftdi::kLineProperties, ftdi::kLine8N1},
+           {ftdi::kFlowControl, 0},
+           {ftdi::kModemControl, ftdi::kRtsLow},
+           {ftdi::kModemControl, ftdi::kDtrLow},
+       }}) {
+    const UsbStatus status = serial.control(request, value);
+    fatal(status, "serial setup");
+    if (status != UsbStatus::Ok) return failed(status, "serial setup");
+  }
+  UsbStatus status = serial.control(ftdi::kModemControl, ftdi::kDtrHigh);
+  fatal(status, "DTR");
+  if (status != UsbStatus::Ok) return failed(status, "DTR");
+
+  // Hello to the boot loader until it answers 0x0A 0x44 0x2C 0x0D.
+  static constexpr std::array<std::uint8_t, 3> kHello{0x0A, 0x43, 0x0D};
+  static constexpr std::array<std::uint8_t, 4> kReply{0x0A, 0x44, 0x2C, 0x0D};
+  bool answered = false;
+  for (int k = 0; k < options.check_tries && !answered; ++k) {
+    status = serial.write(kHello.data(), kHello.size(), options.timeout_ms);
+    fatal(status, "boot loader hello");
+    if (status != UsbStatus::Ok) continue;
+    std::array<std::uint8_t, 8> reply{};
+    std::size_t got = 0;
+    status = serial.read_exactly(reply.data(), 4, got, options.timeout_ms);
+    fatal(status, "boot loader hello");
+    if (got == 4 && reply[0] == 0x00) {  // the 5-byte form: a 0x00 first
+      std::size_t more = 0;
+      serial.read_exactly(reply.data() + 4, 1, more, options.timeout_ms);
+      got += more;
+    }
+    answered = got >= 4 && std::equal(kReply.begin(), kReply.end(), reply.begin() + static_cast<std::ptrdiff_t>(got - 4));
+  }
+  if (!answered) return "the boot loader did not answer its hello (is the Falcon powered?)";
+
+  status = serial.control(ftdi::kModemControl, ftdi::kDtrLow);
+  fatal(status, "DTR");
+  if (status == UsbStatus::Ok) status = serial.control(ftdi::kBaudRate, ftdi::kBaudLoader);
+  fatal(status, "loader baud rate");
+  if (status != UsbStatus::Ok) return failed(status, "loader baud rate");
+  const std::uint8_t a = 'A';
+  std::uint8_t echo = 0;
+  std::size_t got = 0;
+  status = serial.write(&a, 1, options.timeout_ms);
+  if (status == UsbStatus::Ok) status = serial.read_exactly(&echo, 1, got, options.timeout_ms);
+  fatal(status, "loader check");
+  if (status != UsbStatus::Ok || echo != 'A') return "the boot loader did not echo 'A'";
+
+  std::array<std::uint8_t, kFirmwareBlock> back{};
+  const std::size_t blocks = (firmware.size() + kFirmwareBlock - 1) / kFirmwareBlock;
+  for (std::size_t block = 0; block < blocks; ++block) {
+    const std::size_t offset = block * kFirmwareBlock;
+    const std::size_t size = std::min(kFirmwareBlock, firmware.size() - offset);
+    status = serial.write(firmware.data() + offset, size, options.timeout_ms);
+    if (status == UsbStatus::Ok) status = serial.read_exactly(back.data(), size, got, options.timeout_ms);
+    fatal(status, "firmware upload");
+    std::string where = "firmware block ";
+    where += std::to_string(block + 1);
+    where += " of ";
+    where += std::to_string(blocks);
+    if (status != UsbStatus::Ok) return failed(status, where.c_str());
+    if (!std::equal(back.begin(), back.begin() + static_cast<std::ptrdiff_t>(size), firmware.begin() + static_cast<std::ptrdiff_t>(offset))) {
+      where += " echoed wrong bytes";
+      return where;
+    }
+  }
+  status = serial.enter_firmware_mode();
+  fatal(status, "firmware mode");
+  if (status != UsbStatus::Ok) return failed(status, "firmware mode");
+  return {};
+}
+
+}  // namespace
+
+int boot(UsbTransport& usb, const std::vector<std::uint8_t>& firmware, const std::string& device_id,
+         const BootOptions& options) {
+  FtdiSerial serial(usb);
+  std::string why;
+  const int attempts = std::max(1, options.attempts);
+  for (int attempt = 1; attempt <= attempts; ++attempt) {
+    why = boot_once(serial, firmware, device_id, options);
+    if (why.empty()) return attempt;
+  }
+  std::string reason = why;
+  reason += " (";
+  reason += std::to_string(attempts);
+  reason += " attempts; firmware loading is known to be flaky: unplug the Falcon, plug it in again and retry)";
+  throw DeviceError(device_id, "firmware upload", reason);
+}
+
+bool firmware_running(UsbTransport& usb, unsigned timeout_ms) {
+  FtdiSerial serial(usb);
+  if (serial.enter_firmware_mode() != UsbStatus::Ok) return false;
+  Packet packet{};
+  encode(Words{}, packet);
+  if (serial.write(packet.data(), packet.size(), timeout_ms) != UsbStatus::Ok) return false;
+  PacketReader reader;
+  for (int k = 0; k < 8; ++k) {
+    std::array<std::uint8_t, ftdi::kUsbPacket> bytes{};
+    std::size_t got = 0;
+    if (serial.read(bytes.data(), bytes.size(), got, timeout_ms) != UsbStatus::Ok) return false;
+    reader.feed(bytes.data(), got);
+    Words words;
+    if (reader.next(words)) return true;
+  }
+  return false;
+}
+
+}  // namespace palpa::device::falcon
