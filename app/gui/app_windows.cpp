@@ -9,9 +9,15 @@
 
 #include <QMainWindow>
 #include <QAction>
+#include <QActionGroup>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMessageBox>
+#include <QStatusBar>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/device/device_error.hpp"
+#include "palpa/device/registry.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session.hpp"
@@ -75,6 +81,31 @@ void AppWindows::adopt(QMainWindow& window) {
   connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
   connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
+  add_device_menu(window);
+}
+
+void AppWindows::add_device_menu(QMainWindow& window) {
+  QMenu* menu = window.menuBar()->addMenu(tr("&Device"));
+  connect(menu, &QMenu::aboutToShow, this, [this, menu, w = &window] {
+    menu->clear();
+    auto* group = new QActionGroup(menu);
+    const auto listing = device::list_devices();
+    for (const auto& entry : listing.devices) {
+      QString text = QString::fromStdString(entry.name);
+      if (!entry.detail.empty()) text += QString(" (%1)").arg(QString::fromStdString(entry.detail));
+      if (entry.force_output) text += tr(", force feedback");
+      QAction* action = menu->addAction(text);
+      action->setCheckable(true);
+      action->setChecked(entry.id == settings_.device.id);
+      action->setData(QString::fromStdString(entry.id));
+      group->addAction(action);
+      connect(action, &QAction::triggered, this, [this, w, id = entry.id, text] {
+        choose_device(id);
+        w->statusBar()->showMessage(tr("The next exercise (File > Train on a case) uses %1").arg(text), 10000);
+      });
+    }
+    for (const auto& note : listing.notes) menu->addSection(QString::fromStdString(note))->setEnabled(false);
+  });
 }
 
 QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent) {
@@ -91,6 +122,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
            parent);
       return nullptr;
     }
+    options.device = open_chosen_device(settings_.device);
     const std::string source = case_path.toStdString();
     auto exercise = std::make_unique<trainer::LiveExercise>(io::load_case(source), source, options);
     auto* window = new ui::TraineeWindow(std::move(exercise), file_name(case_path));
@@ -99,6 +131,8 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
     window->show();
     std::fprintf(stderr, "palpa: recording the session in %s\n", options.session_path.c_str());
     return window;
+  } catch (const device::DeviceError& e) {
+    fail(QString::fromStdString(e.what()), parent);
   } catch (const io::CaseError& e) {
     QString line = QString::fromStdString(e.what());
     if (e.problems().size() > 1) {

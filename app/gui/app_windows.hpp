@@ -11,6 +11,8 @@
 #include <QObject>
 #include <QString>
 
+#include "gui_device.hpp"
+
 class QMainWindow;
 class QWidget;
 
@@ -22,6 +24,8 @@ struct TraineeSettings {
   /// The first trainee window open_trainee makes records here; later ones (and an empty
   /// path) record to default_session_path().
   std::filesystem::path first_session;
+  /// The device new exercises palpate with (palpa --device; the Device menu changes it).
+  DeviceChoice device;
 };
 
 /// $XDG_DATA_HOME/palpa/sessions/trainee-UTCSTAMP.palpa (~/.local/share/... by default).
@@ -45,9 +49,14 @@ class AppWindows : public QObject {
 
   /// The last error line ("FILE: WHERE: REASON"), empty after a success.
   const QString& last_error() const { return last_error_; }
+  /// The device the next exercise will use.
+  const DeviceChoice& device() const { return settings_.device; }
+  void choose_device(const std::string& id) { settings_.device.id = id; }
 
  private:
   void fail(const QString& line, QWidget* parent);
+  /// The Device menu: what is attached now (listed again each time it opens: hot-plug).
+  void add_device_menu(QMainWindow& window);
 
   TraineeSettings settings_;
   bool first_trainee_ = true;

@@ -160,6 +160,12 @@ int main(int argc, char** argv) {
   cli.add_option("--trainee", trainee, "trainee id recorded in the session (default: $USER)");
   cli.add_option("--seed", seed, "seed for placing the case's randomized tumours (default: a fresh one)")
       ->check(CLI::NonNegativeNumber);
+  palpa::gui::DeviceChoice device;
+  cli.add_option("--device", device.id,
+                 "trainee: the device to palpate with, an id from 'palpa-cli devices' (virtual = the mouse, "
+                 "spacemouse, falcon, replay:SESSION; default virtual); the Device menu changes it for later exercises");
+  cli.add_option("--falcon-firmware", device.falcon_firmware,
+                 "with --device falcon: the Falcon firmware file to upload (you supply it; see docs/devices.md)");
   cli.add_option("--screenshot", screenshot,
                  "render the window once at its default size, save this PNG and exit (no session is recorded)");
   bool bench = false;
@@ -207,7 +213,7 @@ int main(int argc, char** argv) {
   }
   // What every trainee window opened from a File menu uses (a fresh seed and session
   // file per exercise unless --seed is given).
-  const palpa::gui::TraineeSettings settings{trainee, seed, {}};
+  const palpa::gui::TraineeSettings settings{trainee, seed, {}, device};
   if (mode == "review") return run_review(argc, argv, session_path, screenshot, settings);
   if (mode == "instructor") {
     if (!session_path.empty()) {
@@ -234,6 +240,12 @@ int main(int argc, char** argv) {
   }
 
   std::unique_ptr<palpa::trainer::LiveExercise> exercise;
+  try {
+    if (screenshot.empty()) options.device = palpa::gui::open_chosen_device(device);
+  } catch (const std::exception& e) {  // device::DeviceError, session::SessionError: one line naming the device
+    print_error(e.what());
+    return kBadInput;
+  }
   try {
     exercise = std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(case_path), case_path, options);
   } catch (const palpa::io::CaseError& e) {

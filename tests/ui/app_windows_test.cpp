@@ -45,13 +45,13 @@ class AppWindowsTest : public QObject {
   void cleanup() { QApplication::closeAllWindows(); QTest::qWait(50); }
 
   void fileMenuOpensAnotherCaseAndASession() {
-    palpa::gui::AppWindows app({"ui-test", 3, {}});
+    palpa::gui::AppWindows app({"ui-test", 3, {}, {}});
     auto* first = app.open_trainee(kDefaultCase);
     QVERIFY2(first, qPrintable(app.last_error()));
     QVERIFY(QTest::qWaitForWindowExposed(first));
     auto* menu = first->findChild<palpa::ui::ModeMenu*>();
     QVERIFY(menu);
-    QCOMPARE(first->menuBar()->actions().size(), 1);  // File
+    QCOMPARE(first->menuBar()->actions().size(), 2);  // File, Device
 
     menu->choose_file = [](const QString&, const QString& filter) {
       return filter.contains("json") ? kFlatCase : kExpert;
@@ -78,8 +78,37 @@ class AppWindowsTest : public QObject {
     QCOMPARE(dir.entryList({"*.palpa"}, QDir::Files).size(), 2);
   }
 
+  void deviceMenuListsTheVirtualDeviceAndAMissingDeviceIsRefused() {
+    palpa::gui::AppWindows app({"ui-test", 3, {}, {}});
+    auto* first = app.open_trainee(kDefaultCase);
+    QVERIFY2(first, qPrintable(app.last_error()));
+    QMenu* devices = nullptr;
+    for (auto* action : first->menuBar()->actions()) {
+      if (action->text() == "&Device") devices = action->menu();
+    }
+    QVERIFY(devices);
+    emit devices->aboutToShow();  // listed afresh each time it opens (hot-plug)
+    QStringList ids;
+    QString checked;
+    for (auto* action : devices->actions()) {
+      if (!action->data().isValid()) continue;
+      ids << action->data().toString();
+      if (action->isChecked()) checked = action->data().toString();
+    }
+    QVERIFY2(ids.contains("virtual"), qPrintable(ids.join(",")));
+    QCOMPARE(checked, QString("virtual"));
+
+    // No Falcon on this machine: the next exercise is refused with one line naming it,
+    // and the window already open stays.
+    app.choose_device("falcon");
+    QVERIFY(!app.open_trainee(kDefaultCase));
+    QVERIFY2(app.last_error().startsWith("falcon"), qPrintable(app.last_error()));
+    QVERIFY(!app.last_error().contains('\n'));
+    QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 1);
+  }
+
   void badFilesAreRefusedWithOneLineNamingThem() {
-    palpa::gui::AppWindows app({"ui-test", 3, {}});
+    palpa::gui::AppWindows app({"ui-test", 3, {}, {}});
     QTemporaryDir dir;
     const QString bad_case = dir.filePath("bad.json");
     QFile f(bad_case);

@@ -49,6 +49,19 @@ class StopBySignal(unittest.TestCase):
         self.run_and_stop(signal.SIGINT)
 
 
+class DeviceOption(unittest.TestCase):
+    def test_a_device_that_is_not_attached_is_one_line_and_exit_2(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_device_") as d:
+            session = os.path.join(d, "never.palpa")
+            res = subprocess.run([GUI, "--device", "spacemouse", "--session", session],
+                                 capture_output=True, text=True, timeout=60)
+            self.assertEqual(res.returncode, 2, res.stderr)
+            lines = [l for l in res.stderr.splitlines() if l.startswith("palpa: error:")]
+            self.assertEqual(len(lines), 1, res.stderr)
+            self.assertIn("spacemouse", lines[0])
+            self.assertFalse(os.path.exists(session))  # nothing recorded
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
     parser.add_argument("--gui", required=True)

@@ -2,8 +2,11 @@
 // body; a palpation scripted with mouse and wheel events presses the tissue (force and a
 // moving surface); a mark over the tumour and Finish give a score card that found it; the
 // command line answers --help, --version and a bad case file.
+#include <atomic>
+
 #include <QApplication>
 #include <QKeyEvent>
+#include <QLabel>
 #include <QListWidget>
 #include <QMouseEvent>
 #include <QProcess>
@@ -73,6 +76,30 @@ void wheel(QWindow* view, const QPoint& at, int notches) {
                 Qt::NoModifier, Qt::NoScrollPhase, false);
   QApplication::sendEvent(view, &e);
 }
+
+/// A probe that rests above the body for a moment and is then unplugged: read() turns
+/// Disconnected after `reads_before_unplug` ticks, as a driver reports a pulled cable.
+class UnpluggedProbe final : public palpa::engine::Device {
+ public:
+  explicit UnpluggedProbe(int reads_before_unplug) : left_(reads_before_unplug) {
+    caps_.name = "Test probe";
+    caps_.max_force = 10.0;
+    caps_.force_output = true;
+  }
+  const palpa::engine::DeviceCapabilities& capabilities() const override { return caps_; }
+  palpa::engine::DeviceStatus read(double, palpa::engine::DevicePose& pose) noexcept override {
+    pose.position = palpa::engine::Vec3(0.0, 0.0, 0.2);
+    return --left_ > 0 ? palpa::engine::DeviceStatus::Ok : palpa::engine::DeviceStatus::Disconnected;
+  }
+  palpa::engine::DeviceStatus write_force(const palpa::engine::Vec3&) noexcept override {
+    return left_ > 0 ? palpa::engine::DeviceStatus::Ok : palpa::engine::DeviceStatus::Disconnected;
+  }
+  std::string fault_message() const override { return "cable pulled"; }
+
+ private:
+  palpa::engine::DeviceCapabilities caps_;
+  std::atomic<int> left_;
+};
 
 /// Counts pixels of the skin colour the bodies are drawn in (reddish, lit or shaded): the
 /// background is blue-grey and the side panel grey, so neither counts.
@@ -209,6 +236,30 @@ class TraineeWindowTest : public QObject {
     QCOMPARE(window.last_frame().bodies_drawn, std::size_t{1});
     QVERIFY(window.exercise().meshes().visible(1));
     QVERIFY(!window.exercise().meshes().visible(0));
+  }
+
+  void unpluggedDeviceFallsBackToTheMouseAndSaysSo() {
+    QTemporaryDir dir;
+    palpa::trainer::LiveOptions o;
+    o.trainee = "ui-test";
+    o.seed = 11;
+    o.session_path = dir.filePath("unplug.palpa").toStdString();
+    o.realtime.request_fifo = false;
+    o.device = std::make_shared<UnpluggedProbe>(300);  // unplugged after ~0.3 s
+    palpa::ui::TraineeWindow window(
+        std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o),
+        "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.device_banner()->isHidden());
+    QVERIFY(wait_for([&] { return window.device_banner()->isVisible(); }));
+    QVERIFY2(window.device_banner()->text().contains("Test probe"), qPrintable(window.device_banner()->text()));
+    // The force ramps to zero first, then the mouse's virtual device takes over.
+    QVERIFY(wait_for([&] { return window.exercise().device_name() != "Test probe"; }));
+    // The exercise goes on with the mouse: a press over the tumour is felt.
+    const QPoint at = window.to_view(top_over_tumour(window.exercise()));
+    move_pointer(window.view()->input(), at);
+    QVERIFY(wait_for([&] { return window.gauge()->contact().force > 1.0; }));
   }
 
   void screenshotShowsTheBody() {

@@ -91,6 +91,11 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
                           central);
   help->setWordWrap(true);
   side->addWidget(help);
+  device_banner_ = new QLabel(central);
+  device_banner_->setWordWrap(true);
+  device_banner_->setStyleSheet("background: #fbe3b0; color: #5a3b00; padding: 6px; border: 1px solid #d9a441");
+  device_banner_->hide();
+  side->addWidget(device_banner_);
   const auto& th = exercise_->thresholds();
   gauge_ = new ForceGauge(th.light_max, th.deep_min, central);
   side->addWidget(gauge_);
@@ -361,6 +366,13 @@ void TraineeWindow::frame() {
       probe_->VisibilityOn();
     }
     gauge_->set_contact(exercise_->contact());
+    if (exercise_->device_switched() && device_banner_->isHidden()) {
+      // The chosen device was unplugged (or failed): the force went to zero and the mouse
+      // drives the probe now; the session goes on.
+      device_banner_->setText(QString::fromStdString(exercise_->device_message()));
+      device_banner_->show();
+      update_status();
+    }
   }
   const auto t3 = Clock::now();
   render_window_->Render();

@@ -45,6 +45,8 @@ class TraineeWindow : public QMainWindow {
   trainer::LiveExercise& exercise() { return *exercise_; }
   VtkView* view() const { return view_; }
   ForceGauge* gauge() const { return gauge_; }
+  /// The message shown when the chosen device faulted and the mouse took over (hidden before).
+  QLabel* device_banner() const { return device_banner_; }
   BodySurfaces& surfaces() { return *surfaces_; }
   vtkRenderer* renderer() const { return renderer_; }
   /// Where a scene point (m) appears in the view (widget pixels).
@@ -101,6 +103,7 @@ class TraineeWindow : public QMainWindow {
   VtkView* view_ = nullptr;
   ForceGauge* gauge_ = nullptr;
   QLabel* depth_label_ = nullptr;
+  QLabel* device_banner_ = nullptr;  ///< shown once the chosen device faulted (unplugged)
   QListWidget* marks_list_ = nullptr;
   QPushButton* remove_button_ = nullptr;
   QPushButton* finish_button_ = nullptr;
