@@ -87,6 +87,8 @@ void AppWindows::adopt(QMainWindow& window) {
 void AppWindows::add_device_menu(QMainWindow& window) {
   QMenu* menu = window.menuBar()->addMenu(tr("&Device"));
   connect(menu, &QMenu::aboutToShow, this, [this, menu, w = &window] {
+    // clear() deletes the actions, not their group: the last listing's group goes with them.
+    for (auto* old : menu->findChildren<QActionGroup*>()) delete old;
     menu->clear();
     auto* group = new QActionGroup(menu);
     const auto listing = device::list_devices();
@@ -96,7 +98,10 @@ void AppWindows::add_device_menu(QMainWindow& window) {
       if (entry.force_output) text += tr(", force feedback");
       QAction* action = menu->addAction(text);
       action->setCheckable(true);
-      action->setChecked(entry.id == settings_.device.id);
+      // "spacemouse" or "falcon" (the first one found) ticks the first of that kind.
+      const bool chosen = entry.id == settings_.device.id ||
+                          (entry.kind == settings_.device.id && !group->checkedAction());
+      action->setChecked(chosen);
       action->setData(QString::fromStdString(entry.id));
       group->addAction(action);
       connect(action, &QAction::triggered, this, [this, w, id = entry.id, text] {
@@ -122,7 +127,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
            parent);
       return nullptr;
     }
-    options.device = open_chosen_device(settings_.device);
+    options.device = open_chosen_device_with_progress(settings_.device, parent);
     const std::string source = case_path.toStdString();
     auto exercise = std::make_unique<trainer::LiveExercise>(io::load_case(source), source, options);
     auto* window = new ui::TraineeWindow(std::move(exercise), file_name(case_path));
