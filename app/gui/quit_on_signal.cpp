@@ -1,12 +1,14 @@
 #include "quit_on_signal.hpp"
 
 #include <csignal>
+#include <cstdio>
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <QApplication>
 #include <QSocketNotifier>
+#include <QWidget>
 
 namespace palpa::gui {
 
@@ -28,8 +30,18 @@ void quit_on_signals() {
     char byte = 0;
     while (::read(signal_pipe[0], &byte, 1) > 0) {
     }
+    static bool asked = false;
     QApplication::closeAllWindows();  // each window finishes its work in closeEvent
-    QApplication::quit();
+    bool open = false;
+    for (auto* w : QApplication::topLevelWidgets()) open = open || w->isVisible();
+    if (!open || asked) {
+      QApplication::quit();
+      return;
+    }
+    // A window kept itself open (an instructor's unsaved case, after asking): leave it to
+    // the user; a second signal quits anyway.
+    asked = true;
+    std::fprintf(stderr, "palpa: a window is still open (unsaved changes?); send the signal again to quit anyway\n");
   });
   struct sigaction action {};
   action.sa_handler = on_signal;
