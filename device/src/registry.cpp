@@ -1,8 +1,6 @@
 #include "palpa/device/registry.hpp"
 
-#include <chrono>
 #include <cstdio>
-#include <thread>
 
 #include "palpa/device/device_error.hpp"
 #include "palpa/device/device_ids.hpp"
@@ -94,15 +92,7 @@ std::unique_ptr<engine::Device> open_falcon(const Found& f, const std::string& i
   falcon->start();
   if (options.homing_timeout > 0.0 && !falcon->homed()) {
     say("Falcon: homing: move the grip all the way out and back in");
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(options.homing_timeout);
-    while (!falcon->homed() && std::chrono::steady_clock::now() < end) {
-      engine::DevicePose pose;
-      if (falcon->read(0.0, pose) != engine::DeviceStatus::Ok) throw DeviceError(id, "homing", falcon->fault_message());
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (!falcon->homed()) {
-      throw DeviceError(id, "homing", "not homed in time: move the grip all the way out and back in, then try again");
-    }
+    falcon->wait_homed(options.homing_timeout);  // throws with the device's reason
   }
   return falcon;
 }

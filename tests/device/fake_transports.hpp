@@ -3,6 +3,7 @@
 // plays recorded reports, and a Falcon (FTDI chip, boot loader and firmware) on a fake USB
 // bus. Both can be "unplugged".
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <deque>
 #include <utility>
@@ -54,7 +55,7 @@ class FakeFalcon final : public UsbTransport {
   bool unplugged = false;
   bool no_permission = false;      ///< the udev rules are missing
   UsbStatus fail_reads = UsbStatus::Ok;  ///< every read fails with this (Ok: no failure)
-  bool silent = false;             ///< the firmware stops answering
+  std::atomic<bool> silent{false};  ///< the firmware stops answering (may be set while the I/O thread runs)
 
   // What the test reads.
   std::vector<std::pair<std::uint8_t, std::uint16_t>> controls;
