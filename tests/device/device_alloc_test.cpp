@@ -72,6 +72,19 @@ TEST(DeviceRealTime, FalconReadAndWriteAllocateNothing) {
   }
   EXPECT_EQ(allocated, 0);
   EXPECT_EQ(moves, 2000) << "every reading moved the probe: read() saw each new encoder count";
+  // Encoders no arm can produce: the misses are counted and the Error raised in the haptic
+  // thread, without a word allocated (fault_message() words it later, elsewhere).
+  raw->encoder = {3000, -3000, 3000};
+  ASSERT_TRUE(device.exchange());
+  const long before = palpa::test::allocations();
+  engine::DeviceStatus status = engine::DeviceStatus::Ok;
+  for (int k = 0; k < 60 && status == engine::DeviceStatus::Ok; ++k) {
+    status = device.read(3.0 + k * 0.001, pose);
+    device.write_force(Vec3(0, 0, 2.0));
+  }
+  EXPECT_EQ(palpa::test::allocations() - before, 0);
+  EXPECT_EQ(status, engine::DeviceStatus::Error);
+  EXPECT_FALSE(device.fault_message().empty());
 }
 
 TEST(DeviceRealTime, ReplayAndTheFallbackSwitchAllocateNothing) {
