@@ -3,6 +3,7 @@
 add_executable(device_tests
   device/spacemouse_test.cpp
   device/falcon_protocol_test.cpp
+  device/falcon_fault_test.cpp
   device/falcon_kinematics_test.cpp
   device/registry_replay_test.cpp
   device/fallback_test.cpp

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
+#include <thread>
 
 #include "palpa/device/device_error.hpp"
 
@@ -22,10 +24,9 @@ FalconDevice::FalconDevice(std::unique_ptr<UsbTransport> transport, std::string 
 FalconDevice::~FalconDevice() { stop(); }
 
 int FalconDevice::connect() {
-  if (options_.firmware.empty()) {
-    if (falcon::firmware_running(*transport_)) return 0;
-    falcon::read_firmware(options_.firmware, id_);  // throws: no file given, with the hint
-  }
+  // The firmware keeps running while the Falcon stays powered: every exercise after the
+  // first finds it there, and a needless upload costs seconds and can fail (it is flaky).
+  if (falcon::firmware_running(*transport_)) return 0;
   const auto firmware = falcon::read_firmware(options_.firmware, id_);
   return falcon::boot(*transport_, firmware, id_, options_.boot);
 }
@@ -38,13 +39,13 @@ void FalconDevice::start() {
     const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(1.0 / options_.rate_hz));
     auto next = clock::now();
     while (!stop_.load(std::memory_order_relaxed)) {
-      if (!exchange(2)) return;
+      if (!exchange(2)) break;
       next += period;
       const auto now = clock::now();
       if (next < now) next = now;  // late: do not try to catch up with a burst
       std::this_thread::sleep_until(next);
     }
-    send_zero_torque();
+    send_zero_torque();  // every way out: stopped, unplugged, failed (best effort: its error is moot)
   });
 }
 
@@ -62,8 +63,39 @@ void FalconDevice::fail(DeviceStatus status, const std::string& message) {
 }
 
 std::string FalconDevice::fault_message() const {
-  std::lock_guard<std::mutex> lock(message_mutex_);
-  return fault_message_;
+  {
+    std::lock_guard<std::mutex> lock(message_mutex_);
+    if (!fault_message_.empty()) return fault_message_;
+  }
+  std::string message;
+  switch (haptic_fault_.load(std::memory_order_acquire)) {
+    case HapticFault::None: break;
+    case HapticFault::BadReadings:
+      message = caps_.name;
+      message += " (";
+      message += id_;
+      message += "): the encoders read positions no arm can reach, ";
+      message += std::to_string(options_.bad_readings);
+      message += " times in a row (a loose encoder cable? unplug and plug in again)";
+      break;
+  }
+  return message;
+}
+
+void FalconDevice::wait_homed(double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!homed()) {
+    if (status() != DeviceStatus::Ok) {
+      // fail() and read() set the reason before the status, so it is there; say so if not.
+      std::string reason = fault_message();
+      if (reason.empty()) reason = "the Falcon stopped answering while homing (no reason given)";
+      throw DeviceError(id_, "homing", reason);
+    }
+    if (std::chrono::steady_clock::now() >= end) {
+      throw DeviceError(id_, "homing", "not homed in time: move the grip all the way out and back in, then try again");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 void FalconDevice::send_zero_torque() {
@@ -72,8 +104,15 @@ void FalconDevice::send_zero_torque() {
   serial_.write(packet.data(), packet.size(), 10);
 }
 
+bool FalconDevice::zero_and_stop() {
+  send_zero_torque();
+  return false;
+}
+
 bool FalconDevice::exchange(unsigned timeout_ms) {
-  if (status_.load(std::memory_order_acquire) != DeviceStatus::Ok) return false;
+  // Not Ok (failed here, or the haptic thread gave up on the readings): the motors get a
+  // zero, whatever the last command was.
+  if (status_.load(std::memory_order_acquire) != DeviceStatus::Ok) return zero_and_stop();
   falcon::Words out;
   if (homed()) {
     commands_.update();
@@ -90,7 +129,7 @@ bool FalconDevice::exchange(unsigned timeout_ms) {
   if (status == UsbStatus::Ok) status = serial_.read(bytes.data(), bytes.size(), got, timeout_ms);
   if (status == UsbStatus::NoDevice) {
     fail(DeviceStatus::Disconnected, caps_.name + " (" + id_ + "): unplugged");
-    return false;
+    return zero_and_stop();  // in case it is only the link that is gone
   }
   if (status != UsbStatus::Ok && status != UsbStatus::Timeout) {
     // A transfer can fail once on a busy bus; three in a row is a broken link.
@@ -101,8 +140,7 @@ bool FalconDevice::exchange(unsigned timeout_ms) {
       message += "): USB transfer failed: ";
       message += to_string(status);
       fail(DeviceStatus::Error, message);
-      send_zero_torque();
-      return false;
+      return zero_and_stop();
     }
     return true;
   }
@@ -124,7 +162,7 @@ bool FalconDevice::exchange(unsigned timeout_ms) {
       message += id_;
       message += "): the firmware stopped answering (power lost? unplug and plug in again)";
       fail(DeviceStatus::Error, message);
-      return false;
+      return zero_and_stop();  // a firmware that does not answer may still listen
     }
     return true;
   }
@@ -155,41 +193,65 @@ engine::DeviceStatus FalconDevice::read(double /*t*/, engine::DevicePose& pose) 
   if (status != DeviceStatus::Ok) return status;
   readings_.update();
   const Reading& reading = readings_.read();
-  if (reading.count > 0) {
-    const falcon::Angles angles(falcon::encoder_to_angle(reading.encoder[0]), falcon::encoder_to_angle(reading.encoder[1]),
-                                falcon::encoder_to_angle(reading.encoder[2]));
-    auto p = kinematics_.forward(angles, device_position_);
-    if (!p) p = kinematics_.forward(angles, falcon::Kinematics::workspace_center());
-    if (!p) return DeviceStatus::Error;  // encoders no arm can produce: a garbled reading
-    device_position_ = *p;
+  // Before the axes are homed the counts are relative to wherever the grip was at power-up:
+  // no kinematics, the position stays put (the workspace centre).
+  const bool homed_reading = (reading.flags & falcon::kHomedMask) == falcon::kHomedMask;
+  if (reading.count > 0 && homed_reading) {
+    if (reading.count != solved_count_) {
+      solved_count_ = reading.count;
+      const falcon::Angles angles(falcon::encoder_to_angle(reading.encoder[0]),
+                                  falcon::encoder_to_angle(reading.encoder[1]),
+                                  falcon::encoder_to_angle(reading.encoder[2]));
+      auto p = kinematics_.forward(angles, device_position_);
+      if (!p) p = kinematics_.forward(angles, falcon::Kinematics::workspace_center());
+      solved_ = p.has_value();
+      if (p) device_position_ = *p;
+    }
+    // Encoders no arm can produce: one garbled reading keeps the last good position; a run
+    // of them (reads, so a stalled reading counts too) is a broken encoder or cable.
+    if (solved_) {
+      bad_readings_ = 0;
+    } else if (++bad_readings_ >= options_.bad_readings) {
+      haptic_fault_.store(HapticFault::BadReadings, std::memory_order_release);
+      auto expected = DeviceStatus::Ok;
+      status_.compare_exchange_strong(expected, DeviceStatus::Error, std::memory_order_acq_rel);
+      publish_torque({0, 0, 0});
+      return status_.load(std::memory_order_acquire);
+    }
   }
   pose.position = to_scene(device_position_);
   pose.buttons = reading.flags & falcon::kButtonMask;
   return DeviceStatus::Ok;
 }
 
+void FalconDevice::publish_torque(const std::array<std::int16_t, 3>& torque) {
+  commands_.write_slot().torque = torque;
+  t0_.store(torque[0], std::memory_order_relaxed);
+  t1_.store(torque[1], std::memory_order_relaxed);
+  t2_.store(torque[2], std::memory_order_relaxed);
+  commands_.publish();
+}
+
 engine::DeviceStatus FalconDevice::write_force(const engine::Vec3& force) noexcept {
   const auto status = status_.load(std::memory_order_acquire);
-  if (status != DeviceStatus::Ok) return status;
+  if (status != DeviceStatus::Ok) {
+    publish_torque({0, 0, 0});  // whatever was asked: a failed device gets no force
+    return status;
+  }
   falcon::Vec3 f = force_to_device(force);
   if (!f.allFinite()) f.setZero();
   const double norm = f.norm();
   if (norm > options_.max_force) f *= options_.max_force / norm;
   const auto torques = kinematics_.torques(device_position_, f);
-  Command& command = commands_.write_slot();
-  if (!torques) {
-    command.torque = {0, 0, 0};
-  } else {
+  std::array<std::int16_t, 3> torque{0, 0, 0};
+  if (torques) {
     falcon::Vec3 units((*torques).unaryExpr([](double t) { return falcon::torque_to_units(t); }));
     // One motor at its limit scales all three, so the force keeps its direction.
     const double biggest = units.cwiseAbs().maxCoeff();
     if (biggest > falcon::kMaxTorqueUnits) units *= falcon::kMaxTorqueUnits / biggest;
-    for (int k = 0; k < 3; ++k) command.torque[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(std::lround(units[k]));
+    for (int k = 0; k < 3; ++k) torque[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(std::lround(units[k]));
   }
-  t0_.store(command.torque[0], std::memory_order_relaxed);
-  t1_.store(command.torque[1], std::memory_order_relaxed);
-  t2_.store(command.torque[2], std::memory_order_relaxed);
-  commands_.publish();
+  publish_torque(torque);
   return DeviceStatus::Ok;
 }
 

@@ -1,8 +1,7 @@
 #include "palpa/device/registry.hpp"
 
-#include <chrono>
 #include <cstdio>
-#include <thread>
+#include <filesystem>
 
 #include "palpa/device/device_error.hpp"
 #include "palpa/device/device_ids.hpp"
@@ -39,9 +38,19 @@ std::vector<Found> find_all(const Enumerators& enumerators, std::vector<std::str
 
   HidEnumeration hid = enumerators.hid ? enumerators.hid() : HidEnumeration{};
   if (!hid.note.empty()) notes.push_back("SpaceMouse: " + hid.note);
+  std::vector<Found> mice;
   for (const auto& d : hid.devices) {
     const UsbId* model = find_spacemouse(d.vendor, d.product);
     if (!model || !is_axis_interface(d)) continue;
+    // One device seen twice (another of its interfaces, where the backend cannot tell
+    // usages): the same serial, or no serial and another interface number. Two identical
+    // devices without serials have the same interface number: both are listed.
+    bool same_device = false;
+    for (const auto& m : mice) {
+      same_device = same_device || (m.hid.vendor == d.vendor && m.hid.product == d.product && m.hid.serial == d.serial &&
+                                    (!d.serial.empty() || m.hid.interface_number != d.interface_number));
+    }
+    if (same_device) continue;
     Found f;
     f.entry.id = "spacemouse:" + hex4(d.vendor) + ":" + hex4(d.product);
     if (!d.serial.empty()) f.entry.id += ":" + d.serial;
@@ -50,10 +59,27 @@ std::vector<Found> find_all(const Enumerators& enumerators, std::vector<std::str
     f.entry.force_output = false;
     f.entry.detail = d.path;
     f.hid = d;
-    bool duplicate = false;
-    for (const auto& other : found) duplicate = duplicate || other.entry.id == f.entry.id;
-    if (!duplicate) found.push_back(std::move(f));
+    mice.push_back(std::move(f));
   }
+  // Identical models without serial numbers would share an id: tell them apart by their
+  // hidraw node (in the serial's place), which can change when they are plugged again.
+  bool told_apart = false;
+  for (auto& f : mice) {
+    if (!f.hid.serial.empty()) continue;
+    bool twin = false;
+    for (const auto& m : mice) {
+      twin = twin || (&m != &f && m.hid.serial.empty() && m.hid.vendor == f.hid.vendor && m.hid.product == f.hid.product);
+    }
+    if (!twin) continue;
+    f.entry.id += ":";
+    f.entry.id += std::filesystem::path(f.hid.path).filename().string();
+    told_apart = true;
+  }
+  if (told_apart) {
+    notes.push_back("SpaceMouse: identical models without serial numbers are told apart by their /dev/hidraw node "
+                    "(the id may change when they are plugged in again)");
+  }
+  for (auto& f : mice) found.push_back(std::move(f));
 
   UsbEnumeration usb = enumerators.usb ? enumerators.usb(kFalconId.vendor, kFalconId.product) : UsbEnumeration{};
   if (!usb.note.empty()) notes.push_back("Falcon: " + usb.note);
@@ -94,15 +120,7 @@ std::unique_ptr<engine::Device> open_falcon(const Found& f, const std::string& i
   falcon->start();
   if (options.homing_timeout > 0.0 && !falcon->homed()) {
     say("Falcon: homing: move the grip all the way out and back in");
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(options.homing_timeout);
-    while (!falcon->homed() && std::chrono::steady_clock::now() < end) {
-      engine::DevicePose pose;
-      if (falcon->read(0.0, pose) != engine::DeviceStatus::Ok) throw DeviceError(id, "homing", falcon->fault_message());
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (!falcon->homed()) {
-      throw DeviceError(id, "homing", "not homed in time: move the grip all the way out and back in, then try again");
-    }
+    falcon->wait_homed(options.homing_timeout);  // throws with the device's reason
   }
   return falcon;
 }

@@ -29,6 +29,8 @@ ReplayDevice::ReplayDevice(const session::Session& session, const std::string& s
     buttons_.push_back(s.buttons);
   }
   if (t_.empty()) throw DeviceError("replay:" + source, "samples", "the session has no samples to play");
+  const double tick = t_.size() > 1 ? (t_.back() - t_.front()) / static_cast<double>(t_.size() - 1) : 0.0;
+  end_ = t_.back() + 0.5 * tick;
 }
 
 std::unique_ptr<ReplayDevice> ReplayDevice::from_file(const std::filesystem::path& path) {
@@ -37,7 +39,7 @@ std::unique_ptr<ReplayDevice> ReplayDevice::from_file(const std::filesystem::pat
 
 engine::DeviceStatus ReplayDevice::read(double t, engine::DevicePose& pose) noexcept {
   const double time = t_.front() + t;
-  if (time > t_.back()) {
+  if (time > end_) {
     ended_.store(true, std::memory_order_relaxed);
     pose.position = position_.back();
     pose.buttons = 0;

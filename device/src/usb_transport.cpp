@@ -17,7 +17,7 @@ const char* to_string(UsbStatus status) {
     case UsbStatus::Timeout: return "timed out";
     case UsbStatus::NoDevice: return "device unplugged";
     case UsbStatus::Access: return "permission denied (install packaging/udev/70-palpa.rules, see docs/devices.md)";
-    case UsbStatus::Busy: return "busy (another program holds the device)";
+    case UsbStatus::Busy: return "busy (held by another program or another Palpa window)";
     case UsbStatus::Pipe: return "endpoint stalled";
     case UsbStatus::Overflow: return "the device sent more than asked";
     case UsbStatus::Io: return "input/output error";

@@ -52,16 +52,39 @@ TEST(DeviceRealTime, FalconReadAndWriteAllocateNothing) {
   for (int k = 0; k < 4; ++k) device.exchange();  // homed
   ASSERT_TRUE(device.homed());
   engine::DevicePose pose;
-  const long before = palpa::test::allocations();
-  double sum = 0.0;
-  for (int k = 0; k < 2000; ++k) {
-    raw->encoder[0] = static_cast<std::int16_t>(100 + k % 50);  // the grip moves: forward kinematics works
-    device.read(k * 0.001, pose);
+  ASSERT_EQ(device.read(0.0, pose), engine::DeviceStatus::Ok);
+  Vec3 previous = pose.position;
+  long allocated = 0;
+  int moves = 0;
+  for (int k = 1; k <= 2000; ++k) {
+    // The grip moves and the I/O side exchanges a packet (the fake firmware allocates, so
+    // only read() and write_force() are counted): read() solves the forward kinematics of
+    // a new reading every tick.
+    raw->encoder[0] = static_cast<std::int16_t>(100 + k % 50);
+    ASSERT_TRUE(device.exchange());
+    const long before = palpa::test::allocations();
+    const auto status = device.read(k * 0.001, pose);
     device.write_force(Vec3(0.001 * (k % 100), 0, 2.0));
-    sum += pose.position.norm();
+    allocated += palpa::test::allocations() - before;
+    ASSERT_EQ(status, engine::DeviceStatus::Ok) << k;
+    if (pose.position != previous) ++moves;
+    previous = pose.position;
+  }
+  EXPECT_EQ(allocated, 0);
+  EXPECT_EQ(moves, 2000) << "every reading moved the probe: read() saw each new encoder count";
+  // Encoders no arm can produce: the misses are counted and the Error raised in the haptic
+  // thread, without a word allocated (fault_message() words it later, elsewhere).
+  raw->encoder = {3000, -3000, 3000};
+  ASSERT_TRUE(device.exchange());
+  const long before = palpa::test::allocations();
+  engine::DeviceStatus status = engine::DeviceStatus::Ok;
+  for (int k = 0; k < 60 && status == engine::DeviceStatus::Ok; ++k) {
+    status = device.read(3.0 + k * 0.001, pose);
+    device.write_force(Vec3(0, 0, 2.0));
   }
   EXPECT_EQ(palpa::test::allocations() - before, 0);
-  EXPECT_GT(sum, 0.0);
+  EXPECT_EQ(status, engine::DeviceStatus::Error);
+  EXPECT_FALSE(device.fault_message().empty());
 }
 
 TEST(DeviceRealTime, ReplayAndTheFallbackSwitchAllocateNothing) {

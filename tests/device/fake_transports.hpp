@@ -3,6 +3,7 @@
 // plays recorded reports, and a Falcon (FTDI chip, boot loader and firmware) on a fake USB
 // bus. Both can be "unplugged".
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <deque>
 #include <utility>
@@ -54,13 +55,14 @@ class FakeFalcon final : public UsbTransport {
   bool unplugged = false;
   bool no_permission = false;      ///< the udev rules are missing
   UsbStatus fail_reads = UsbStatus::Ok;  ///< every read fails with this (Ok: no failure)
-  bool silent = false;             ///< the firmware stops answering
+  std::atomic<bool> silent{false};  ///< the firmware stops answering (may be set while the I/O thread runs)
 
   // What the test reads.
   std::vector<std::pair<std::uint8_t, std::uint16_t>> controls;
   std::vector<std::uint8_t> firmware_received;
   int boot_attempts = 0;
   falcon::Words last_command;
+  std::vector<std::uint8_t> last_packet;  ///< the last firmware command as sent, byte for byte
   int commands = 0;
   Mode mode = Mode::Off;
 
@@ -111,7 +113,11 @@ class FakeFalcon final : public UsbTransport {
         if (size != falcon::kPacketSize || falcon::decode(data, last_command) != nullptr) break;
         ++commands;
         if (silent) break;
-        if ((last_command.flags & falcon::kHomingMode) && homed_after_ > 0) --homed_after_;
+        last_packet.assign(data, data + size);
+        // The firmware's homing-mode bit as libnifalcon sends it (formatInput: byte 13 |= 0x01
+        // before the 0x41 offset), written as the literal: the fake must not share a wrong
+        // constant with the driver.
+        if (((data[13] - 0x41) & 0x01) != 0 && homed_after_ > 0) --homed_after_;
         falcon::Words report;
         report.value = encoder;
         report.flags = static_cast<std::uint8_t>(buttons | (homed_after_ == 0 ? falcon::kHomedMask : 0));

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <utility>
 
 #include "fake_transports.hpp"
 #include "palpa/device/device_error.hpp"
@@ -29,8 +30,20 @@ TEST(FalconPacket, EncodesNibblesLeastSignificantFirstOffsetByA) {
   Packet p{};
   encode(w, p);
   // 1447 = 0x05A7: nibbles 7, A, 5, 0 -> 'H' 'K' 'F' 'A'; -1447 = 0xFA59: 9, 5, A, F -> 'J' 'F' 'K' 'P'
-  // (the example in libnifalcon's firmware notes); flags 0x12 -> 0x53 'S'.
-  EXPECT_EQ(text(p), "<AAAAHKFAJFKPSA>");
+  // (the example in libnifalcon's firmware notes); flags: homing 0x01 and red 0x08
+  // (libnifalcon formatInput() and FalconFirmware.h) = 0x09 -> 0x4A 'J'.
+  EXPECT_EQ(text(p), "<AAAAHKFAJFKPJA>");
+  EXPECT_EQ(p[13], 0x01 + 0x08 + 0x41);
+  // Each flag alone, as the bytes libnifalcon puts in byte 13.
+  const std::pair<std::uint8_t, std::uint8_t> bits[] = {{kHomingMode, 0x01 + 0x41}, {kLedGreen, 0x02 + 0x41},
+                                                        {kLedBlue, 0x04 + 0x41}, {kLedRed, 0x08 + 0x41}};
+  for (const auto& [flag, byte] : bits) {
+    Words one;
+    one.flags = flag;
+    encode(one, p);
+    EXPECT_EQ(p[13], byte) << int(flag);
+  }
+  encode(w, p);
   Words back;
   ASSERT_EQ(decode(p.data(), back), nullptr);
   EXPECT_EQ(back.value, w.value);
@@ -83,6 +96,11 @@ TEST(FalconPacket, TheReaderReassemblesSplitPacketsAndSkipsGarbage) {
   EXPECT_FALSE(reader.next(out));
   EXPECT_EQ(reader.bad_packets(), 1u);   // the frame cut short
   EXPECT_EQ(reader.skipped_bytes(), 5u);  // 'x', 'y' and its three bytes
+}
+
+TEST(UsbTransport, BusyNamesTheOtherPalpaWindowToo) {
+  // A second Palpa window holding the Falcon is the usual culprit, not another program.
+  EXPECT_STREQ(to_string(UsbStatus::Busy), "busy (held by another program or another Palpa window)");
 }
 
 std::vector<std::uint8_t> firmware_bytes(std::size_t n) {
@@ -227,7 +245,8 @@ TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
   for (int k = 0; k < 3; ++k) {
     EXPECT_FALSE(device.homed());
     ASSERT_TRUE(device.exchange());
-    EXPECT_EQ(b.fake->last_command.flags, kHomingMode | kLedRed);
+    ASSERT_EQ(b.fake->last_packet.size(), kPacketSize);
+    EXPECT_EQ(b.fake->last_packet[13], 0x01 + 0x08 + 0x41) << "homing mode (0x01) and the red LED (0x08)";
     EXPECT_EQ(b.fake->last_command.value, (std::array<std::int16_t, 3>{0, 0, 0}));
   }
   EXPECT_TRUE(device.homed());
@@ -246,7 +265,7 @@ TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
   ASSERT_EQ(device.write_force(engine::Vec3(0, 0, 2)), engine::DeviceStatus::Ok);
   const Vec3 tau = *kin.torques(expected_device, Vec3(0, 2, 0));
   ASSERT_TRUE(device.exchange());
-  EXPECT_EQ(b.fake->last_command.flags, kLedGreen);
+  EXPECT_EQ(b.fake->last_packet[13], 0x02 + 0x41) << "the green LED (0x02), homing mode off";
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(b.fake->last_command.value[static_cast<std::size_t>(k)], std::lround(-10000.0 * tau[k])) << k;
   }

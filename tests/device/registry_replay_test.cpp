@@ -60,6 +60,31 @@ TEST(DeviceRegistry, ListsSpaceMiceAndFalconsWithStableIds) {
   EXPECT_TRUE(listing.devices[3].force_output);
 }
 
+TEST(DeviceRegistry, TwoIdenticalSpaceMiceWithoutSerialsAreBothListedApart) {
+  Enumerators e = nothing_attached();
+  e.hid = [] {
+    HidEnumeration h;
+    // Two SpaceNavigators (no serial numbers) on the same interface number, and a third
+    // device seen twice through two interfaces (a backend without usages).
+    h.devices.push_back({"/dev/hidraw3", 0x046D, 0xC626, "", "SpaceNavigator", 0, 0, 0});
+    h.devices.push_back({"/dev/hidraw7", 0x046D, 0xC626, "", "SpaceNavigator", 0, 0, 0});
+    h.devices.push_back({"/dev/hidraw8", 0x046D, 0xC62B, "", "SpaceMouse Pro", 0, 0, 0});
+    h.devices.push_back({"/dev/hidraw9", 0x046D, 0xC62B, "", "SpaceMouse Pro", 1, 0, 0});
+    return h;
+  };
+  const auto listing = list_devices(e);
+  ASSERT_EQ(listing.devices.size(), 4u);
+  EXPECT_EQ(listing.devices[1].id, "spacemouse:046d:c626:hidraw3");
+  EXPECT_EQ(listing.devices[1].detail, "/dev/hidraw3");
+  EXPECT_EQ(listing.devices[2].id, "spacemouse:046d:c626:hidraw7");
+  EXPECT_EQ(listing.devices[2].detail, "/dev/hidraw7");
+  EXPECT_EQ(listing.devices[3].id, "spacemouse:046d:c62b");  // one device: no suffix
+  EXPECT_EQ(listing.devices[3].detail, "/dev/hidraw8");
+  ASSERT_EQ(listing.notes.size(), 1u);
+  EXPECT_EQ(listing.notes[0], "SpaceMouse: identical models without serial numbers are told apart by their "
+                              "/dev/hidraw node (the id may change when they are plugged in again)");
+}
+
 TEST(DeviceRegistry, OpeningSaysWhatIsWrong) {
   auto device = open_device("virtual", {}, nothing_attached());
   ASSERT_TRUE(device);
@@ -115,12 +140,41 @@ TEST(ReplayDevice, PlaysThePathAtTheRecordedTimesThenEnds) {
   EXPECT_TRUE(replay.fault_message().empty());
   EXPECT_EQ(replay.read(0.0039, pose), engine::DeviceStatus::Ok);
   EXPECT_EQ(pose.buttons, 3u);
-  EXPECT_EQ(replay.read(0.0041, pose), engine::DeviceStatus::Disconnected);  // past the last sample (10.004 s)
+  EXPECT_EQ(replay.read(0.0044, pose), engine::DeviceStatus::Ok);  // within half a tick of the last sample
+  EXPECT_EQ(replay.read(0.0046, pose), engine::DeviceStatus::Disconnected);  // past the last sample (10.004 s)
   EXPECT_EQ(replay.fault_message(), "replay:old.palpa: the replay ended");
   // Jumping back (a restarted engine) finds its place again.
   ASSERT_EQ(replay.read(0.001, pose), engine::DeviceStatus::Ok);
   EXPECT_EQ(pose.position, engine::Vec3(0.01, 0.02, 0.03));
   EXPECT_THROW(ReplayDevice(session::Session{}, "empty.palpa"), DeviceError);
+}
+
+TEST(ReplayDevice, TheLastTickPlaysDespiteRounding) {
+  // Times recorded by adding the period (10.0 + 0.001 + ...) and the engine's k / 1000 differ
+  // by ~1e-15: at k = 4, 10.0 + 0.004 is past the recorded 4th time.
+  session::Session s;
+  double t = 10.0;
+  for (int k = 0; k < 5; ++k, t += 0.001) {
+    engine::Sample sample;
+    sample.t = t;
+    sample.position = {0.01 * k, 0.0, 0.0};
+    s.samples.push_back(sample);
+  }
+  ASSERT_GT(s.samples.front().t + 4 / 1000.0, s.samples.back().t) << "the rounding this test is about";
+  ReplayDevice replay(s, "rounded.palpa");
+  engine::DevicePose pose;
+  ASSERT_EQ(replay.read(4 / 1000.0, pose), engine::DeviceStatus::Ok);
+  EXPECT_EQ(pose.position, engine::Vec3(0.04, 0.0, 0.0));
+  ASSERT_EQ(replay.read(replay.duration(), pose), engine::DeviceStatus::Ok);
+  EXPECT_EQ(pose.position, engine::Vec3(0.04, 0.0, 0.0));
+  EXPECT_TRUE(replay.fault_message().empty());
+  EXPECT_EQ(replay.read(5 / 1000.0, pose), engine::DeviceStatus::Disconnected);
+  // One sample: it plays at t = 0 and ends after.
+  session::Session one;
+  one.samples.push_back(s.samples.front());
+  ReplayDevice single(one, "one.palpa");
+  EXPECT_EQ(single.read(0.0, pose), engine::DeviceStatus::Ok);
+  EXPECT_EQ(single.read(0.001, pose), engine::DeviceStatus::Disconnected);
 }
 
 }  // namespace

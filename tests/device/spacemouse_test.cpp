@@ -2,7 +2,9 @@
 // position and rate control, dead zone and unplugging, fed by a fake HID transport.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <memory>
+#include <thread>
 
 #include "fake_transports.hpp"
 #include "palpa/device/device_ids.hpp"
@@ -159,6 +161,25 @@ TEST(SpaceMouseDevice, TheIoThreadDeliversReportsAndStops) {
   SpaceMouseOptions options;
   options.mode = SpaceMouseMode::Position;
   options.dead_zone = 0;
+  options.full_scale = 350.0;
+  options.workspace_radius = 0.06;
+  {
+    // X = 350, full deflection right: the I/O thread's report reaches read() as the
+    // workspace centre plus the radius. (A bounded wait; nothing is timed.)
+    auto device = make({{0x01, 0x5E, 0x01, 0x00, 0x00, 0x00, 0x00}}, options);
+    engine::DevicePose pose;
+    ASSERT_EQ(device->read(0.0, pose), engine::DeviceStatus::Ok);
+    ASSERT_EQ(pose.position, engine::Vec3(0.1, 0.2, 0.3));  // nothing read yet
+    device->start();
+    for (int k = 0; k < 10000 && pose.position.x() == 0.1; ++k) {
+      ASSERT_EQ(device->read(0.0, pose), engine::DeviceStatus::Ok);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    device->stop();  // returns: the thread is told to stop and joined
+    EXPECT_NEAR(pose.position.x(), 0.1 + 0.06, 1e-15) << "the report reached read()";
+    EXPECT_NEAR(pose.position.y(), 0.2, 1e-15);
+    EXPECT_NEAR(pose.position.z(), 0.3, 1e-15);
+  }
   auto device = make({{0x01, 0x5E, 0x01, 0x00, 0x00, 0x00, 0x00}}, options, true);
   device->start();
   engine::DevicePose pose;

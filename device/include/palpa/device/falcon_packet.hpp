@@ -6,10 +6,13 @@
 //
 // Three signed 16-bit words, each as four nibbles, least significant first, every nibble
 // offset by 0x41 ('A'..'P'), then a flags byte (also offset by 0x41) and a spare byte.
-// Host to device the words are the three motor torques and the flags are the LEDs (0x02
-// red, 0x04 green, 0x08 blue) and homing mode (0x10); device to host the words are the
+// Host to device the words are the three motor torques and the flags are homing mode
+// (0x01) and the LEDs (0x02 green, 0x04 blue, 0x08 red); device to host the words are the
 // three encoder counts and the flags the grip buttons (0x01-0x08) and the homed axes
-// (0x10, 0x20, 0x40). Encoding and decoding allocate nothing.
+// (0x10, 0x20, 0x40). Source of the bits: libnifalcon, FalconFirmwareNovintSDK.cpp
+// formatInput() (`m_rawInput[13] = m_ledStatus; if (m_homingMode) m_rawInput[13] |= 0x01;`)
+// and FalconFirmware.h (GREEN_LED=0x2, BLUE_LED=0x4, RED_LED=0x8); formatOutput() reads the
+// homed axes from bits 4-6. Encoding and decoding allocate nothing.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -19,7 +22,11 @@ namespace palpa::device::falcon {
 inline constexpr std::size_t kPacketSize = 16;
 using Packet = std::array<std::uint8_t, kPacketSize>;
 
-inline constexpr std::uint8_t kLedRed = 0x02, kLedGreen = 0x04, kLedBlue = 0x08, kHomingMode = 0x10;
+// Host to device. (0x10-0x40 are what the device RETURNS for the homed axes: sending 0x10
+// as "homing mode" never started homing.)
+inline constexpr std::uint8_t kHomingMode = 0x01;
+inline constexpr std::uint8_t kLedGreen = 0x02, kLedBlue = 0x04, kLedRed = 0x08;
+// Device to host.
 inline constexpr std::uint8_t kButtonMask = 0x0F;
 inline constexpr std::uint8_t kHomedMask = 0x70;  ///< all three axes homed
 

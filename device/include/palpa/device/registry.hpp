@@ -1,7 +1,8 @@
 #pragma once
 // Discovery: what can be a probe here, each with a stable id, and opening one by its id.
 //   virtual                      the mouse-driven virtual device (always there)
-//   spacemouse:VVVV:PPPP[:SERIAL] a SpaceMouse (first of that model when no serial is given)
+//   spacemouse:VVVV:PPPP[:SERIAL] a SpaceMouse (first of that model when no serial is given);
+//                                two identical ones without serials: :hidrawN in its place
 //   spacemouse                   the first SpaceMouse found
 //   falcon:BUS-PORT[.PORT...]    a Novint Falcon in that USB port, e.g. falcon:1-4.2
 //   falcon                       the first Falcon found

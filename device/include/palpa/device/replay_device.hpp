@@ -1,8 +1,9 @@
 #pragma once
 // A recorded session played back as a device: the probe goes where the session's probe
 // went, at the recorded times (the sample standing at t, as review mode shows it), with
-// the recorded buttons; after the last sample it reports Disconnected ("the replay
-// ended"). Ticks recorded during a device fault keep the last good position. For review
+// the recorded buttons; more than half a tick (half the mean sample interval) after the
+// last sample it reports Disconnected ("the replay ended"): the engine's k/rate and the
+// recorded times differ by rounding, and the last tick must still play. Ticks recorded during a device fault keep the last good position. For review
 // and re-scoring: `palpa-cli exercise --device replay:SESSION` runs the recorded hand
 // through the current engine and scores the new session.
 #include <atomic>
@@ -36,6 +37,7 @@ class ReplayDevice final : public engine::Device {
   engine::DeviceCapabilities caps_;
   std::string source_;
   std::vector<double> t_;
+  double end_ = 0.0;  // s: the last sample plus half a tick
   std::vector<engine::Vec3> position_;
   std::vector<std::uint32_t> buttons_;
   std::size_t cursor_ = 0;  // the sample of the last read: playback moves forward
