@@ -201,7 +201,10 @@ class Deb(unittest.TestCase):
                           "checked by hand")
         res = run([validator, self.installed("share", "applications", "palpa.desktop")])
         self.assertEqual(res.returncode, 0, res.stdout + res.stderr)
-        self.assertEqual(res.stdout.strip(), "", "desktop-file-validate warns: " + res.stdout)
+        # Hints are advice (two main categories, Education and Science, are asked for on
+        # purpose: the entry is listed under both); errors and warnings are not accepted.
+        problems = [line for line in res.stdout.splitlines() if ": error: " in line or ": warning: " in line]
+        self.assertEqual(problems, [], res.stdout)
 
     def test_postinst_and_postrm_never_fail(self):
         for script in ("postinst", "postrm"):
