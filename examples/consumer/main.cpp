@@ -3,7 +3,7 @@
 //
 //   palpa 0.1.0
 //   case CASE.json: 1 bodies
-//   body breast: 9 x 11 points; top at the centre (0, 0, 0.05) m
+//   body breast: 9 x 11 points; top at the centre (0.000000000, 0.000000000, 0.050000000) m
 //
 // "The centre" is the middle grid point (rows / 2, cols / 2); the top contour there lies one
 // radius above the skeleton along its normal.
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       const double v = body.v_params()[static_cast<std::size_t>(grid.cols / 2)];
       std::array<double, 3> top{};
       body.top().evaluate(u, v, top);
-      std::printf("body %s: %d x %d points; top at the centre (%.9g, %.9g, %.9g) m\n", body.id().c_str(), grid.rows,
+      std::printf("body %s: %d x %d points; top at the centre (%.9f, %.9f, %.9f) m\n", body.id().c_str(), grid.rows,
                   grid.cols, top[0], top[1], top[2]);
     }
     return 0;

@@ -21,7 +21,7 @@ import unittest
 
 ARGS = None
 SKIP = 77
-TOL = 1e-9  # m; the fit interpolates the data sites to round-off
+TOL = 1e-9  # m; the fit interpolates the data sites to round-off, printed to 1e-9 m
 
 
 def run(cmd, timeout=600, **kw):
