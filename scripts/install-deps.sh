@@ -12,6 +12,7 @@ packages=(
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
   pkg-config libhidapi-dev libusb-1.0-0-dev
+  desktop-file-utils  # packaging test: desktop-file-validate on the menu entry (dpkg-dev comes with build-essential)
 )
 
 missing=()

@@ -7,6 +7,7 @@
 #include "bench_suites.hpp"
 #include "bench_table1.hpp"
 #include "commands.hpp"
+#include "palpa/io/data_paths.hpp"
 
 namespace palpa::cli {
 
@@ -31,12 +32,12 @@ Command add_bench_command(CLI::App& parent) {
                   "dynamics.png into --out.");
   dynamics->add_option("--out", *dyn_out, "output folder; default bench-results");
   auto tess_out = std::make_shared<std::string>("bench-results");
-  auto tess_case = std::make_shared<std::string>("data/cases/default.json");
+  auto tess_case = std::make_shared<std::string>(io::bundled_case_path("default.json").string());
   auto* tessellation = app->add_subcommand(
       "tessellation", "Display tessellation of a case's first body (top and bottom contours, at rest and pressed "
                       "10 mm in) at tolerances from 1e-2 m to 1e-6 m: segments, triangles, time per body and the "
                       "largest deviation from the surface. Writes tessellation.csv and tessellation.png into --out.");
-  tessellation->add_option("--case", *tess_case, "case file; default data/cases/default.json");
+  tessellation->add_option("--case", *tess_case, "case file; default the bundled default.json");
   tessellation->add_option("--out", *tess_out, "output folder; default bench-results");
   auto t1 = std::make_shared<Table1Options>();
   auto t1_csv = std::make_shared<std::string>();

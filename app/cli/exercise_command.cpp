@@ -14,6 +14,7 @@
 #include "palpa/exercise/scripted_trainee.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/io/data_paths.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/session/session_writer.hpp"
 
@@ -38,7 +39,7 @@ std::uint64_t fresh_seed() {
   return (static_cast<std::uint64_t>(device()) << 32) ^ device();
 }
 
-int run_exercise_command(const ExerciseCliOptions& o) {
+int run_exercise_command(ExerciseCliOptions o) {
   if (o.device.rfind("replay:", 0) == 0) {
     if (!o.case_path.empty()) {
       print_error("exercise: CASE is not used with --device replay: (the session's own case, as placed, is replayed)");
@@ -58,6 +59,13 @@ int run_exercise_command(const ExerciseCliOptions& o) {
   }
   if (o.case_path.empty()) {
     print_error("exercise: CASE is required (except with --device replay:SESSION)");
+    return kBadInput;
+  }
+  // A bare name ("default", "flat-5x5") is a bundled case when no such file is here.
+  try {
+    o.case_path = io::resolve_case_argument(o.case_path, io::this_process_data_search()).string();
+  } catch (const io::DataDirError& e) {
+    print_error(e.what());
     return kBadInput;
   }
   if (o.trainee.empty()) {
@@ -121,7 +129,9 @@ Command add_exercise_command(CLI::App& parent) {
       "Run a whole scripted exercise on CASE: a scripted trainee palpates through the haptic engine at 1 kHz "
       "(deterministic, as fast as possible), the session is recorded to --out and scored; the score card "
       "(or --json) goes to standard output. Tumours with a placement rule are placed from --seed.");
-  app->add_option("CASE", o->case_path, "case file (JSON); not with --device replay:");
+  app->add_option("CASE", o->case_path,
+                  "case file (JSON), or the name of a bundled case (default, flat-5x5, two-bodies, ...: the files in "
+                  "share/palpa/cases of the installation); not with --device replay:");
   app->add_option("--trainee", o->trainee, "trainee id recorded in the session (with replay: default the recorded one)")
       ->check([](const std::string& id) { return id.empty() ? std::string("must not be empty") : std::string(); });
   app->add_option("--style", o->style,

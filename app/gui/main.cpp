@@ -24,6 +24,7 @@
 #include "quit_on_signal.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/io/data_paths.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
@@ -139,7 +140,7 @@ int run_instructor(int argc, char** argv, const std::string& case_path, const st
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string case_path = PALPA_SOURCE_DIR "/data/cases/default.json";
+  std::string case_path = palpa::io::bundled_case_path("default.json").string();  // installed or build tree
   std::string mode = "trainee";
   std::string session_path;
   std::string trainee;
