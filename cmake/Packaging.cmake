@@ -32,7 +32,9 @@ install(FILES packaging/udev/70-palpa.rules DESTINATION lib/udev/rules.d)
 
 # Documentation, laid out as in the source tree so the README's and the guides' relative
 # links (docs/..., docs/images/...) still work.
-install(FILES README.md BENCHMARKS.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES README.md BENCHMARKS.md LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# Debian looks for the licence as /usr/share/doc/PACKAGE/copyright.
+install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
 install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 
 # The core for other projects: find_package(Palpa) -> Palpa::core.

@@ -98,6 +98,7 @@ class Deb(unittest.TestCase):
             "share/icons/hicolor/scalable/apps/palpa.svg",
             "lib/udev/rules.d/70-palpa.rules",
             "share/doc/palpa/README.md",
+            "share/doc/palpa/copyright", "share/doc/palpa/LICENSE",
             "share/doc/palpa/docs/images/trainee.png",
             "include/palpa/version.hpp", "include/palpa/io/case_file.hpp", "include/palpa/io/data_paths.hpp",
             "lib/libpalpa_core.a",
