@@ -121,6 +121,9 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
 }
 
 InstructorWindow::~InstructorWindow() {
+  // QWidget's destructor takes the focus from a child editor, which then commits
+  // (editingFinished) into this half-destroyed window: no more of those.
+  for (auto* child : findChildren<QObject*>()) child->disconnect(this);
   // Closed first, so that their sessions finish (a close accepted by closeEvent did it).
   for (auto& w : try_windows_) {
     if (w) w->close();
