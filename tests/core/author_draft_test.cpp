@@ -254,5 +254,115 @@ TEST(AuthorDraft, StiffnessMapIsAnUndoableEdit) {
   EXPECT_EQ(draft.document(), before);
 }
 
+// A body change keeps the tumour where it is and measures its depth to the new skin: the
+// breast's apex 50 mm high with a tumour 10 mm below it; 60 mm thick, the reported depth is
+// the distance from the (unmoved) centre up to the new apex, picked independently (about
+// 20 mm); 30 mm thick, the tumour is above the skin: no depth, and validate() says so.
+TEST(AuthorDraft, DepthAfterABodyChangeIsMeasuredToTheNewSkin) {
+  PresetParams breast = preset_defaults(Preset::Breast);
+  ASSERT_EQ(breast.thickness, 0.05);
+  CaseDraft draft(breast);
+  const SurfacePoint apex = pick_top(draft, 0.0, 0.0);
+  const std::size_t k = draft.add_tumour(apex, {0.010, 0.004, 2000.0});
+  const auto centre = draft.tumour(k)->center;
+
+  breast.thickness = 0.06;
+  draft.apply_preset(breast);
+  EXPECT_EQ(draft.tumour(k)->center, centre);  // the tumour did not move
+  const SurfacePoint new_apex = pick_top(draft, centre[0], centre[1]);
+  const double truth = std::hypot(new_apex.point[0] - centre[0], new_apex.point[1] - centre[1],
+                                  new_apex.point[2] - centre[2]);
+  EXPECT_GT(new_apex.point[2], apex.point[2] + 0.008);  // the skin went up by about 10 mm
+  auto spec = draft.spec(k);
+  ASSERT_TRUE(spec.has_value());
+  EXPECT_NEAR(spec->depth, truth, 1e-4);  // the picker's tessellation tolerance
+  EXPECT_GT(spec->depth, 0.018);
+  EXPECT_TRUE(draft.validate().empty());
+
+  breast.thickness = 0.03;
+  draft.apply_preset(breast);
+  EXPECT_EQ(draft.tumour(k)->center, centre);
+  EXPECT_FALSE(draft.spec(k).has_value());  // above the new skin: no depth below it
+  EXPECT_TRUE(has_problem_at(draft.validate(), "/tumors/0"));
+
+  // Undo brings the old bodies and the recorded anchor back: 10 mm again.
+  ASSERT_TRUE(draft.undo());
+  ASSERT_TRUE(draft.undo());
+  spec = draft.spec(k);
+  ASSERT_TRUE(spec.has_value());
+  EXPECT_NEAR(spec->depth, 0.010, 1e-12);
+}
+
+// Editing a tumour's stiffness or radius leaves its centre exactly as written, even where
+// recomputing it from its anchor and depth would round it (a tumour without anchor).
+TEST(AuthorDraft, EditingStiffnessLeavesTheCentreBitIdentical) {
+  CaseDraft draft = CaseDraft::load(PALPA_SOURCE_DIR "/data/cases/default.json");
+  const auto before = *draft.tumour(0);
+  auto spec = *draft.spec(0);
+  spec.stiffness = before.stiffness * 1.5;
+  spec.radius = 0.0003;
+  draft.edit_tumour(0, spec);
+  EXPECT_EQ(draft.tumour(0)->center, before.center);
+  EXPECT_EQ(draft.tumour(0)->radius, 0.0003);
+  EXPECT_EQ(draft.tumour(0)->stiffness, before.stiffness * 1.5);
+  EXPECT_FALSE(draft.document()["tumors"][0].contains("anchor"));  // nothing else written
+}
+
+// Undo history is capped by memory as well as by count: with room for 3.5 documents of
+// the same size, 10 title edits leave the 3 newest steps, the oldest dropped.
+TEST(AuthorDraft, UndoHistoryIsCappedByMemory) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  const auto title = [](int k) { return std::string("Title number ") + static_cast<char>('A' + k); };
+  draft.set_title(title(0));
+  const std::size_t one = approx_bytes(draft.document());
+  EXPECT_GT(one, draft.document().dump().size());  // nodes take more room than their text
+  draft.set_undo_limits({200, one * 7 / 2});
+  EXPECT_LE(draft.history_bytes(), one);  // one step: the new case before its title
+  std::vector<nlohmann::json> docs{draft.document()};
+  for (int k = 1; k <= 10; ++k) {
+    draft.set_title(title(k));
+    docs.push_back(draft.document());
+    EXPECT_LE(draft.history_bytes(), one * 7 / 2);
+  }
+  int undone = 0;
+  while (draft.undo()) {
+    ++undone;
+    EXPECT_EQ(draft.document(), docs[docs.size() - 1 - static_cast<std::size_t>(undone)]);
+  }
+  EXPECT_EQ(undone, 3);
+  // The undone documents now sit in redo, within the same cap; redo brings them all back.
+  EXPECT_LE(draft.history_bytes(), one * 7 / 2);
+  while (draft.redo()) {
+  }
+  EXPECT_EQ(draft.document(), docs.back());
+  // A count limit of 2 keeps 2 steps.
+  draft.set_undo_limits({2, std::size_t{1} << 30});
+  draft.set_title("x");
+  EXPECT_TRUE(draft.undo());
+  EXPECT_TRUE(draft.undo());
+  EXPECT_FALSE(draft.undo());
+}
+
+// Failed edits leave no undo step and change nothing.
+TEST(AuthorDraft, FailedEditsLeaveNoUndoStep) {
+  CaseDraft array = CaseDraft::from_document(nlohmann::json::array({1, 2}), "array");
+  EXPECT_THROW(array.set_title("t"), std::invalid_argument);
+  EXPECT_FALSE(array.can_undo());
+  EXPECT_FALSE(array.dirty());
+  EXPECT_EQ(array.document(), nlohmann::json::array({1, 2}));
+
+  // A tumour with a recorded anchor in a document without bodies: moving it fails without
+  // inserting a "bodies" member outside undo.
+  nlohmann::json doc = {{"tumors", {{{"body", "b"}, {"center", {0.0, 0.0, 0.01}}, {"radius", 0.004},
+                                      {"stiffness", 2000.0},
+                                      {"anchor", {{"point", {0.0, 0.0, 0.02}}, {"normal", {0.0, 0.0, 1.0}}}}}}}};
+  CaseDraft bodiless = CaseDraft::from_document(doc, "bodiless");
+  EXPECT_THROW(bodiless.move_tumour(0, {0, {0.0, 0.0, 0.02}, {0.0, 0.0, 1.0}}), std::out_of_range);
+  EXPECT_EQ(bodiless.document(), doc);
+  EXPECT_FALSE(bodiless.can_undo());
+  EXPECT_THROW((void)bodiless.add_tumour({0, {0.0, 0.0, 0.02}, {0.0, 0.0, 1.0}}, {}), std::out_of_range);
+  EXPECT_EQ(bodiless.document(), doc);
+}
+
 }  // namespace
 }  // namespace palpa::author

@@ -2,7 +2,10 @@
 // controls change the drawn body; a click on the body places a tumour under it at the set
 // depth; undo/redo (actions and keys); save -> open round-trips the case; a bad case shows
 // its problem at the field; a grayscale image sets the stiffness; "Try it" opens a trainee
-// window recording a session; palpa --mode instructor --screenshot draws the body.
+// window recording a session; palpa --mode instructor --screenshot draws the body. Also:
+// values typed but not committed (Save, Undo), Save As next to an existing file, Undo
+// keys from side-panel editors, the wheel over unfocused boxes, a one-field tumour edit,
+// the owner's device for "Try it", closing the window finishes the Try-it sessions.
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
@@ -11,21 +14,28 @@
 #include <QImage>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QMessageBox>
 #include <QProcess>
+#include <QPushButton>
 #include <QSurfaceFormat>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
 #include <QtTest>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <stdexcept>
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/engine/device.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/session/session_reader.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_scene.hpp"
 #include "palpa/ui/instructor_tumour_panel.hpp"
@@ -79,6 +89,69 @@ bool has_problem(const InstructorWindow& window, const QString& where) {
 }
 
 void write_text(const QString& path, const std::string& text) { std::ofstream(path.toStdString()) << text; }
+
+std::string read_text(const QString& path) {
+  std::ifstream in(path.toStdString());
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Answers the next message box (from inside its exec loop) with `button` and keeps its
+/// text in `*text`. Delete the returned timer when no box is expected any more.
+QTimer* answer_next_box(QMessageBox::StandardButton button, QString* text) {
+  auto* timer = new QTimer(qApp);
+  timer->setInterval(10);
+  QObject::connect(timer, &QTimer::timeout, [timer, button, text] {
+    for (auto* w : QApplication::topLevelWidgets()) {
+      auto* box = qobject_cast<QMessageBox*>(w);
+      if (box && box->isVisible() && box->button(button)) {
+        *text = box->text();
+        timer->stop();
+        box->button(button)->click();
+        return;
+      }
+    }
+  });
+  timer->start();
+  return timer;
+}
+
+/// A probe standing still above the body: the device the application would hand over.
+class FakeProbe final : public palpa::engine::Device {
+ public:
+  FakeProbe() {
+    caps_.name = "Fake probe";
+    caps_.max_force = 5.0;
+    caps_.force_output = true;
+  }
+  const palpa::engine::DeviceCapabilities& capabilities() const override { return caps_; }
+  palpa::engine::DeviceStatus read(double, palpa::engine::DevicePose& pose) noexcept override {
+    pose.position = palpa::engine::Vec3(0.0, 0.0, 0.1);
+    return palpa::engine::DeviceStatus::Ok;
+  }
+  palpa::engine::DeviceStatus write_force(const palpa::engine::Vec3&) noexcept override {
+    return palpa::engine::DeviceStatus::Ok;
+  }
+
+ private:
+  palpa::engine::DeviceCapabilities caps_;
+};
+
+std::size_t files_in(const QString& dir) {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(dir.toStdString(), ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec)) {
+    ++n;
+  }
+  return n;
+}
+
+void wheel(QWidget* widget, int notches) {
+  const QPoint at = widget->rect().center();
+  QWheelEvent e(QPointF(at), QPointF(widget->mapToGlobal(at)), QPoint(), QPoint(0, 120 * notches), Qt::NoButton,
+                Qt::NoModifier, Qt::NoScrollPhase, false);
+  QApplication::sendEvent(widget, &e);
+}
 
 }  // namespace
 
@@ -225,6 +298,18 @@ class InstructorWindowTest : public QObject {
     QVERIFY(!window.open_case(broken));
     QVERIFY2(window.message().startsWith(broken + ": line "), qPrintable(window.message()));
     QCOMPARE(window.draft().source(), bad.toStdString());
+    QVERIFY(has_problem(window, "/tumors/0/radius"));  // the current case's problems stay listed
+
+    // A title too long is marked with its reason, and unmarked once fixed.
+    window.title_edit()->setText(QString(static_cast<int>(palpa::io::CaseLimits::kMaxTitleLength) + 1, 'x'));
+    emit window.title_edit()->editingFinished();
+    QVERIFY(has_problem(window, "/title"));
+    QVERIFY(!window.title_edit()->toolTip().isEmpty());
+    window.title_edit()->setText("Short");
+    emit window.title_edit()->editingFinished();
+    QVERIFY(!has_problem(window, "/title"));
+    QVERIFY(window.title_edit()->toolTip().isEmpty());
+    QVERIFY(window.title_edit()->styleSheet().isEmpty());
   }
 
   // A 64 x 32 grayscale ramp, black at the left to white at the right (along x, the grid
@@ -270,6 +355,27 @@ class InstructorWindowTest : public QObject {
              qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
     QVERIFY(window.scene().top(0)->GetPointData()->GetScalars() != nullptr);
 
+    // A ramp along y, black at the image's bottom row to white at its top (seen from above,
+    // y grows up the image): skeleton column j gets 100 + 400 j / 10, whatever the row.
+    QImage up(32, 64, QImage::Format_Grayscale8);
+    for (int y = 0; y < up.height(); ++y) {
+      const int v = static_cast<int>(std::lround((up.height() - 1 - y) * 255.0 / (up.height() - 1)));
+      for (int x = 0; x < up.width(); ++x) up.setPixelColor(x, y, QColor(v, v, v));
+    }
+    const QString up_png = dir.filePath("up.png");
+    QVERIFY(up.save(up_png));
+    QVERIFY2(window.import_stiffness_map(up_png), qPrintable(window.message()));
+    const auto kv = window.draft().document()["bodies"][0]["stiffness"];
+    for (int i = 0; i < 11; ++i) {
+      for (int j = 0; j < 11; ++j) {
+        const double expected = 100.0 + 400.0 * j / 10.0;
+        const double got = kv[static_cast<std::size_t>(i * 11 + j)].get<double>();
+        QVERIFY2(std::abs(got - expected) < 2.0, qPrintable(QString("%1,%2: %3 vs %4").arg(i).arg(j).arg(got).arg(expected)));
+      }
+    }
+    QVERIFY(window.undo_action()->isEnabled());
+    window.undo_action()->trigger();  // back to the x ramp for what follows
+
     // An unreadable image: a clear message, the case unchanged.
     const auto doc = window.draft().document();
     const QString fake = dir.filePath("fake.png");
@@ -296,6 +402,203 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(QString::fromStdString(trainee->exercise().session_path().parent_path().string()), dir.filePath("sessions"));
     trainee->close();  // finishes the session; the window deletes itself
     QTRY_VERIFY(window.try_window() == nullptr);
+  }
+
+  // A title typed without leaving the field is what Ctrl+S saves; typed and then undone,
+  // the typed title is the step undone and the field shows the title before it.
+  void typedButUncommittedTitleIsSavedAndUndone() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    const QString path = dir.filePath("typed.json");
+    QVERIFY2(window.save_as(path), qPrintable(window.message()));
+    QApplication::setActiveWindow(&window);
+    auto* title = window.title_edit();
+    title->setFocus();
+    QVERIFY(title->hasFocus());
+    title->selectAll();
+    QTest::keyClicks(title, "Typed title");
+    QCOMPARE(window.draft().title(), std::string("New slab case"));  // not committed yet
+    QTest::keyClick(title, Qt::Key_S, Qt::ControlModifier);
+    QCOMPARE(palpa::author::CaseDraft::load(path.toStdString()).title(), std::string("Typed title"));
+    QVERIFY(!window.draft().dirty());
+    QVERIFY(title->hasFocus());  // the field keeps the focus
+
+    title->selectAll();
+    QTest::keyClicks(title, "Second title");
+    window.undo_action()->trigger();
+    QCOMPARE(window.draft().title(), std::string("Typed title"));
+    QCOMPARE(title->text(), QString("Typed title"));
+    window.undo_action()->trigger();
+    QCOMPARE(window.draft().title(), std::string("New slab case"));
+    QCOMPARE(title->text(), QString("New slab case"));
+    // New drops a typed title with the old case, not onto the new one.
+    title->selectAll();
+    QTest::keyClicks(title, "Left behind");
+    window.new_case(Preset::Prostate);
+    QCOMPARE(title->text(), QString("New prostate case"));
+    title->clearFocus();
+    QCOMPARE(window.draft().title(), std::string("New prostate case"));
+    QVERIFY(!window.draft().can_undo());
+  }
+
+  // Destroyed (not closed) while a title is being typed: the field's focus-out on the way
+  // out must not edit the half-destroyed window.
+  void destroyedWhileTypingIsSafe() {
+    auto window = std::make_unique<InstructorWindow>(palpa::author::CaseDraft());
+    show(*window);
+    QApplication::setActiveWindow(window.get());
+    window->title_edit()->setFocus();
+    QVERIFY(window->title_edit()->hasFocus());
+    QTest::keyClicks(window->title_edit(), " edited");
+    window.reset();
+  }
+
+  // Save As to a name without ".json" next to NAME.json: asked before replacing it.
+  void saveAsAsksBeforeReplacingTheJsonFile() {
+    QTemporaryDir dir;
+    const QString existing = dir.filePath("existing.json");
+    write_text(existing, "precious");
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    window.set_save_path_chooser([&] { return dir.filePath("existing"); });
+    QString asked;
+    auto* timer = answer_next_box(QMessageBox::No, &asked);
+    QVERIFY(!window.save_as_dialog());
+    delete timer;
+    QVERIFY2(asked.contains("existing.json"), qPrintable(asked));
+    QCOMPARE(read_text(existing), std::string("precious"));
+    QVERIFY(window.draft().path().empty());
+
+    asked.clear();
+    timer = answer_next_box(QMessageBox::Yes, &asked);
+    QVERIFY2(window.save_as_dialog(), qPrintable(window.message()));
+    delete timer;
+    QVERIFY(!asked.isEmpty());
+    QCOMPARE(QString::fromStdString(window.draft().path().string()), existing);
+    QCOMPARE(palpa::io::load_case(existing.toStdString()).tumours.size(), std::size_t{0});
+
+    // A name that is free: no question.
+    window.set_save_path_chooser([&] { return dir.filePath("fresh"); });
+    asked.clear();
+    timer = answer_next_box(QMessageBox::No, &asked);
+    QVERIFY(window.save_as_dialog());
+    delete timer;
+    QVERIFY(asked.isEmpty());
+    QVERIFY(QFile::exists(dir.filePath("fresh.json")));
+  }
+
+  // Ctrl+Z and Ctrl+Shift+Z undo and redo the case while a side-panel box or the title has
+  // the focus (those editors claim the keys for their own text otherwise).
+  void undoKeysReachTheCaseFromSidePanelEditors() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    QVERIFY(window.click_at(window.to_view(palpa::trainer::Vec3(0.0, 0.0, 0.03))));
+    QApplication::setActiveWindow(&window);
+    auto* depth = window.tumour_panel()->depth_box();
+    depth->setFocus();
+    QVERIFY(depth->hasFocus());
+    QTest::keyClick(depth, Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{0});
+    QTest::keyClick(depth, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+    window.title_edit()->setFocus();
+    QTest::keyClick(window.title_edit(), Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{0});
+  }
+
+  // The wheel over a box without focus scrolls the panel and leaves its value alone.
+  void wheelChangesOnlyAFocusedBox() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    QApplication::setActiveWindow(&window);
+    auto* width = window.preset_panel()->width_box();
+    window.title_edit()->setFocus();
+    const double before = width->value();
+    wheel(width, 1);
+    QCOMPARE(width->value(), before);
+    QVERIFY(!window.draft().dirty());
+    width->setFocus();
+    QVERIFY(width->hasFocus());
+    wheel(width, 1);
+    QCOMPARE(width->value(), before + width->singleStep());
+    QVERIFY(window.draft().dirty());
+  }
+
+  // A tumour written elsewhere (12.34 mm deep, radius 0.3 mm): changing only its stiffness
+  // leaves its centre and radius bit-identical; changing its radius leaves the centre.
+  void tumourEditChangesOnlyTheEditedField() {
+    auto doc = palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab)).document();
+    const std::array<double, 3> centre{0.0123, -0.0071, 0.03 - 0.01234};
+    doc["tumors"] = nlohmann::json::array(
+        {{{"body", "slab"}, {"center", centre}, {"radius", 0.0003}, {"stiffness", 2000.0}}});
+    InstructorWindow window{palpa::author::CaseDraft::from_document(doc, "written elsewhere")};
+    show(window);
+    window.tumour_panel()->select(0);
+    QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    QVERIFY2(std::abs(window.tumour_panel()->depth_box()->value() - 12.34) < 0.011,
+             qPrintable(QString::number(window.tumour_panel()->depth_box()->value())));
+    window.tumour_panel()->stiffness_box()->setValue(2500.0);
+    auto t = *window.draft().tumour(0);
+    QCOMPARE(t.stiffness, 2500.0);
+    QVERIFY(t.center == centre);
+    QVERIFY(t.radius == 0.0003);
+    window.tumour_panel()->radius_box()->setValue(4.0);
+    t = *window.draft().tumour(0);
+    QVERIFY(t.center == centre);
+    QCOMPARE(t.radius, 0.004);
+    QCOMPARE(t.stiffness, 2500.0);
+  }
+
+  // "Try it" palpates with the device its owner hands over; one that cannot be opened
+  // says why in one line and opens no trainee window.
+  void tryItUsesTheOwnersDevice() {
+    QTemporaryDir dir;
+    const QString sessions = dir.filePath("sessions");
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    window.set_sessions_dir(sessions.toStdString());
+    show(window);
+    QVERIFY(window.click_at(window.to_view(palpa::trainer::Vec3(0.01, 0.0, 0.03))));
+    int opened = 0;
+    window.set_device_opener([&opened] {
+      ++opened;
+      return std::make_shared<FakeProbe>();
+    });
+    auto* trainee = window.try_it();
+    QVERIFY2(trainee != nullptr, qPrintable(window.message()));
+    QCOMPARE(opened, 1);
+    QCOMPARE(trainee->exercise().device_name(), std::string("Fake probe"));
+    trainee->close();
+    QTRY_VERIFY(window.try_window() == nullptr);
+
+    const std::size_t files = files_in(sessions);
+    window.set_device_opener([]() -> std::shared_ptr<palpa::engine::Device> {
+      throw std::runtime_error("Fake probe: not attached\n(details)");
+    });
+    QVERIFY(window.try_it() == nullptr);
+    QCOMPARE(window.message(), QString("Fake probe: not attached"));
+    QVERIFY(window.try_window() == nullptr);
+    QCOMPARE(files_in(sessions), files);  // no session started
+  }
+
+  // Closing the instructor window closes its Try-it windows, whose sessions then end.
+  void closingFinishesTheTryItSessions() {
+    QTemporaryDir dir;
+    auto window = std::make_unique<InstructorWindow>(palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab)));
+    window->set_sessions_dir(dir.filePath("sessions").toStdString());
+    show(*window);
+    QVERIFY(window->click_at(window->to_view(palpa::trainer::Vec3(0.0, 0.0, 0.03))));
+    QVERIFY(window->save_as(dir.filePath("tried.json")));  // clean: closing asks nothing
+    auto* trainee = window->try_it();
+    QVERIFY2(trainee != nullptr, qPrintable(window->message()));
+    const auto session_path = trainee->exercise().session_path();
+    QVERIFY(window->close());
+    const auto session = palpa::session::read_session(session_path, {false});
+    QVERIFY(session.complete);
+    QVERIFY(!session.events.empty());
+    QCOMPARE(session.events.back().kind, palpa::session::EventKind::End);
+    QTRY_VERIFY(window->try_window() == nullptr);
+    window.reset();
   }
 
   void screenshotShowsTheBody() {

@@ -43,10 +43,11 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   layout->addWidget(table_, 1);
 
   auto* form = new QFormLayout;
-  depth_ = spin(this, 0.0, 200.0, 1.0, 1, tr(" mm"));
+  // Two decimals (10 um) and a low radius floor: a loaded tumour shows as it is written.
+  depth_ = spin(this, 0.0, 200.0, 1.0, 2, tr(" mm"));
   depth_->setValue(10.0);
   depth_->setToolTip(tr("Depth of the centre below the picked skin point"));
-  radius_ = spin(this, 0.5, 50.0, 0.5, 1, tr(" mm"));
+  radius_ = spin(this, 0.01, 50.0, 0.5, 2, tr(" mm"));
   radius_->setValue(5.0);
   // A ~100 kPa region under a fingertip (palpation.md, flat-punch estimate).
   stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
@@ -82,7 +83,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
     emit selection_changed(selected());
   });
   for (auto* box : {depth_, radius_, stiffness_}) {
-    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_spec(); });
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this, box] { emit_spec(box); });
   }
   connect(randomize_, &QCheckBox::toggled, this, [this] { emit_placement(); });
   for (auto* box : rule_) {
@@ -104,8 +105,8 @@ void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
     const auto t = draft.tumour(k);
     const auto s = draft.spec(k);
     const int row = static_cast<int>(k);
-    const QString cells[] = {s ? QString::number(s->depth * 1e3, 'f', 1) : QString("?"),
-                             t ? QString::number(t->radius * 1e3, 'f', 1) : QString("?"),
+    const QString cells[] = {s ? QString::number(s->depth * 1e3, 'f', 2) : QString("?"),
+                             t ? QString::number(t->radius * 1e3, 'f', 2) : QString("?"),
                              t ? QString::number(t->stiffness, 'f', 0) : QString("?"),
                              draft.placement(k) ? tr("yes") : tr("no")};
     for (int c = 0; c < 4; ++c) {
@@ -168,9 +169,26 @@ std::optional<exercise::Placement> InstructorTumourPanel::placement() const {
                              {rule_[4]->value(), rule_[5]->value()}};
 }
 
-void InstructorTumourPanel::emit_spec() {
+void InstructorTumourPanel::emit_spec(const QDoubleSpinBox* changed) {
   if (updating_) return;
-  if (const auto k = selected()) emit spec_changed(*k, spec());
+  const auto k = selected();
+  if (!k) return;
+  // Only the changed field: the others as the draft holds them, not as the boxes round them.
+  author::TumourSpec s = spec();
+  if (draft_) {
+    author::TumourSpec merged = s;
+    if (const auto current = draft_->spec(*k)) {
+      merged = *current;
+    } else if (const auto t = draft_->tumour(*k)) {
+      merged.radius = t->radius;
+      merged.stiffness = t->stiffness;
+    }
+    if (changed == depth_) merged.depth = s.depth;
+    if (changed == radius_) merged.radius = s.radius;
+    if (changed == stiffness_) merged.stiffness = s.stiffness;
+    s = merged;
+  }
+  emit spec_changed(*k, s);
 }
 
 void InstructorTumourPanel::emit_placement() {

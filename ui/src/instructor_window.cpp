@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include <QAbstractSpinBox>
 #include <QAction>
+#include <QApplication>
 #include <QCloseEvent>
+#include <QComboBox>
 #include <QGroupBox>
 #include <QHBoxLayout>
+#include <QKeyEvent>
 #include <QKeySequence>
 #include <QLabel>
 #include <QLineEdit>
@@ -79,8 +83,10 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
 
   build_view();
   build_actions();
+  guard_editors();
 
   connect(title_, &QLineEdit::editingFinished, this, [this] {
+    title_->setModified(false);  // committed: refresh() shows the draft's title again
     const std::string text = title_->text().toStdString();
     if (text != draft_.title()) edit([this, text] { draft_.set_title(text); });
   });
@@ -115,7 +121,50 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
 }
 
 InstructorWindow::~InstructorWindow() {
-  for (auto& w : try_windows_) delete w.data();
+  // QWidget's destructor takes the focus from a child editor, which then commits
+  // (editingFinished) into this half-destroyed window: no more of those.
+  for (auto* child : findChildren<QObject*>()) child->disconnect(this);
+  // Closed first, so that their sessions finish (a close accepted by closeEvent did it).
+  for (auto& w : try_windows_) {
+    if (w) w->close();
+    delete w.data();
+  }
+}
+
+void InstructorWindow::guard_editors() {
+  for (auto* w : findChildren<QWidget*>()) {
+    const bool choice = qobject_cast<QAbstractSpinBox*>(w) || qobject_cast<QComboBox*>(w);
+    if (choice) w->setFocusPolicy(Qt::StrongFocus);  // not WheelFocus: the wheel scrolls the panel
+    if (choice || qobject_cast<QLineEdit*>(w)) w->installEventFilter(this);
+  }
+}
+
+bool InstructorWindow::filter_editor_event(QWidget* editor, QEvent* event) {
+  if (event->type() == QEvent::ShortcutOverride) {
+    // A line edit or spin box claims Ctrl+Z for its own text: let the case's undo win.
+    auto* key = static_cast<QKeyEvent*>(event);
+    const int mods = static_cast<int>(key->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier |
+                                                          Qt::AltModifier | Qt::MetaModifier));
+    const QKeySequence pressed(key->key() | mods);
+    if (undo_->shortcuts().contains(pressed) || redo_->shortcuts().contains(pressed)) {
+      event->ignore();
+      return true;
+    }
+  } else if (event->type() == QEvent::Wheel && !editor->hasFocus() &&
+             (qobject_cast<QAbstractSpinBox*>(editor) || qobject_cast<QComboBox*>(editor))) {
+    event->ignore();  // on to the scroll area
+    return true;
+  }
+  return false;
+}
+
+void InstructorWindow::commit_pending() {
+  QWidget* focus = QApplication::focusWidget();
+  if (!focus || !isAncestorOf(focus)) return;
+  // Leaving the editor commits it (keyboard tracking is off); focus comes back after.
+  const QPointer<QWidget> keep(focus);
+  focus->clearFocus();
+  if (keep && keep->isVisible()) keep->setFocus(Qt::OtherFocusReason);
 }
 
 void InstructorWindow::build_view() {
@@ -200,7 +249,9 @@ void InstructorWindow::edit(const std::function<void()>& op) {
 
 void InstructorWindow::refresh() {
   update_title();
-  if (!title_->hasFocus()) title_->setText(QString::fromStdString(draft_.title()));
+  // A title being typed (not committed yet) stays; otherwise the field shows the draft's.
+  const QString title = QString::fromStdString(draft_.title());
+  if (!title_->isModified() && title_->text() != title) title_->setText(title);
   preset_panel_->show_params(draft_.preset());
   tumour_panel_->show_draft(draft_);
 
@@ -245,6 +296,7 @@ void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
   tumour_panel_->clear_problems();
   preset_panel_->set_problem(QString());
   title_->setStyleSheet(QString());
+  title_->setToolTip(QString());
   for (const auto& p : problems) {
     const QString where = QString::fromStdString(p.where);
     const QString reason = QString::fromStdString(p.reason);
@@ -338,7 +390,9 @@ bool InstructorWindow::click_at(const QPoint& pos, bool move_selected) {
 }
 
 bool InstructorWindow::eventFilter(QObject* watched, QEvent* event) {
-  if (watched == view_->input()) {
+  if (watched != view_->input() && watched->isWidgetType()) {
+    if (filter_editor_event(static_cast<QWidget*>(watched), event)) return true;
+  } else if (watched == view_->input()) {
     if (event->type() == QEvent::MouseButtonPress) {
       auto* e = static_cast<QMouseEvent*>(event);
       if (e->button() == Qt::LeftButton) {
@@ -365,6 +419,7 @@ void InstructorWindow::set_stiffness_overlay(bool on) {
 }
 
 void InstructorWindow::undo() {
+  commit_pending();  // a value typed just before Undo is the step undone
   if (draft_.undo()) {
     set_message(tr("Undone."));
     refresh();
@@ -372,6 +427,7 @@ void InstructorWindow::undo() {
 }
 
 void InstructorWindow::redo() {
+  commit_pending();
   if (draft_.redo()) {
     set_message(tr("Redone."));
     refresh();

@@ -6,6 +6,7 @@
 
 #include <QCloseEvent>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QMessageBox>
 
 #include "palpa/trainer/live_exercise.hpp"
@@ -39,11 +40,11 @@ std::filesystem::path default_sessions_dir() {
 }  // namespace
 
 bool InstructorWindow::open_case(const QString& path) {
+  commit_pending();
   try {
     draft_ = author::CaseDraft::load(path.toStdString());
   } catch (const io::CaseError& e) {
-    // Nothing to edit (unreadable, not JSON): the current case stays.
-    show_problems(e.problems());
+    // Nothing to edit (unreadable, not JSON): the current case and its problems stay.
     set_message(QString::fromStdString(e.lines().front()));
     return false;
   }
@@ -57,6 +58,7 @@ bool InstructorWindow::open_case(const QString& path) {
 }
 
 bool InstructorWindow::save() {
+  commit_pending();
   if (draft_.path().empty()) {
     set_message(tr("The case has no file yet: use Save As."));
     return false;
@@ -65,6 +67,7 @@ bool InstructorWindow::save() {
 }
 
 bool InstructorWindow::save_as(const QString& path) {
+  commit_pending();
   try {
     draft_.save(path.toStdString());
   } catch (const io::CaseError& e) {
@@ -81,6 +84,7 @@ bool InstructorWindow::save_as(const QString& path) {
 }
 
 void InstructorWindow::new_case(author::Preset preset) {
+  commit_pending();  // the typed title must not be applied to the new case later
   draft_ = author::CaseDraft(author::preset_defaults(preset));
   drawn_bodies_ = nlohmann::json();
   refresh();
@@ -109,6 +113,7 @@ bool InstructorWindow::import_stiffness_map(const QString& path) {
 }
 
 TraineeWindow* InstructorWindow::try_it() {
+  commit_pending();
   io::CaseFile file;
   try {
     file = draft_.valid_case();
@@ -130,6 +135,15 @@ TraineeWindow* InstructorWindow::try_it() {
   name += std::to_string(++try_count_);
   name += ".palpa";
   options.session_path = dir / name;
+  if (device_opener_) {
+    try {
+      options.device = device_opener_();
+    } catch (const std::exception& e) {
+      const QString what = QString::fromStdString(e.what());
+      set_message(what.section('\n', 0, 0));
+      return nullptr;
+    }
+  }
   try {
     std::filesystem::create_directories(dir);
     auto exercise = std::make_unique<trainer::LiveExercise>(file, draft_.source(), options);
@@ -148,6 +162,7 @@ TraineeWindow* InstructorWindow::try_it() {
 }
 
 bool InstructorWindow::confirm_discard() {
+  commit_pending();
   if (!draft_.dirty()) return true;
   const auto answer = QMessageBox::question(this, tr("Unsaved changes"),
                                             tr("The case has unsaved changes. Save them first?"),
@@ -164,6 +179,10 @@ bool InstructorWindow::confirm_discard() {
 
 void InstructorWindow::closeEvent(QCloseEvent* event) {
   if (confirm_discard()) {
+    // Their closeEvent finishes the sessions (End event); they delete themselves.
+    for (auto& w : try_windows_) {
+      if (w) w->close();
+    }
     event->accept();
   } else {
     event->ignore();
@@ -176,11 +195,34 @@ void InstructorWindow::open_dialog() {
   if (!path.isEmpty() && !open_case(path)) QMessageBox::warning(this, tr("Cannot open"), message_);
 }
 
-void InstructorWindow::save_as_dialog() {
-  QString path = QFileDialog::getSaveFileName(this, tr("Save case"), QString(), tr("Palpa cases (*.json)"));
-  if (path.isEmpty()) return;
-  if (!path.endsWith(".json")) path += ".json";
-  if (!save_as(path)) QMessageBox::warning(this, tr("Not saved"), message_);
+QString InstructorWindow::choose_save_path() {
+  if (save_path_chooser_) return save_path_chooser_();
+  QFileDialog dialog(this, tr("Save case"), QString(), tr("Palpa cases (*.json)"));
+  dialog.setAcceptMode(QFileDialog::AcceptSave);
+  dialog.setDefaultSuffix("json");  // added before the dialog asks about replacing a file
+  if (dialog.exec() != QDialog::Accepted || dialog.selectedFiles().isEmpty()) return {};
+  return dialog.selectedFiles().front();
+}
+
+bool InstructorWindow::save_as_dialog() {
+  commit_pending();
+  QString path = choose_save_path();
+  if (path.isEmpty()) return false;
+  if (!path.endsWith(".json", Qt::CaseInsensitive)) {
+    path += ".json";
+    // The chooser asked about the name without ".json", not this one.
+    if (QFileInfo::exists(path) &&
+        QMessageBox::question(this, tr("Replace file"), tr("%1 already exists. Replace it?").arg(path),
+                              QMessageBox::Yes | QMessageBox::No, QMessageBox::No) != QMessageBox::Yes) {
+      set_message(tr("Not saved: %1 exists.").arg(path));
+      return false;
+    }
+  }
+  if (!save_as(path)) {
+    QMessageBox::warning(this, tr("Not saved"), message_);
+    return false;
+  }
+  return true;
 }
 
 void InstructorWindow::import_dialog() {

@@ -44,6 +44,32 @@ double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) 
 
 }  // namespace
 
+std::size_t approx_bytes(const json& value) {
+  // An explicit stack: a document built by hand has no depth limit.
+  constexpr std::size_t kNode = sizeof(json);
+  constexpr std::size_t kMapEntry = 48;  // a std::map node's links and colour, besides its key and value
+  std::size_t total = 0;
+  std::vector<const json*> stack{&value};
+  while (!stack.empty()) {
+    const json* v = stack.back();
+    stack.pop_back();
+    total += kNode;
+    if (v->is_string()) {
+      total += sizeof(std::string) + v->get_ref<const std::string&>().capacity();
+    } else if (v->is_array()) {
+      total += sizeof(json::array_t);
+      for (const auto& e : *v) stack.push_back(&e);
+    } else if (v->is_object()) {
+      total += sizeof(json::object_t);
+      for (const auto& [key, e] : v->items()) {
+        total += kMapEntry + sizeof(std::string) + key.capacity();
+        stack.push_back(&e);
+      }
+    }
+  }
+  return total;
+}
+
 CaseDraft::CaseDraft(const PresetParams& params)
     : doc_(make_preset_case(params, std::string("New ") + to_string(params.preset) + " case").document) {}
 
@@ -107,16 +133,41 @@ void CaseDraft::save(const std::filesystem::path& path) {
   saved_revision_ = revision_;
 }
 
+void CaseDraft::set_undo_limits(const UndoLimits& limits) {
+  limits_ = limits;
+  trim_history();
+}
+
+void CaseDraft::trim_history() {
+  // The oldest first; one step always stays.
+  std::size_t drop = 0;
+  while (undo_.size() - drop > 1 && (undo_.size() - drop > limits_.steps || history_bytes_ > limits_.bytes)) {
+    history_bytes_ -= undo_[drop].bytes;
+    ++drop;
+  }
+  undo_.erase(undo_.begin(), undo_.begin() + static_cast<std::ptrdiff_t>(drop));
+}
+
+CaseDraft::State CaseDraft::take_current() {
+  const std::size_t bytes = approx_bytes(doc_);
+  return {std::move(doc_), revision_, bytes};
+}
+
 void CaseDraft::begin_edit() {
-  undo_.push_back({doc_, revision_});
-  if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
+  for (const auto& s : redo_) history_bytes_ -= s.bytes;
   redo_.clear();
+  State current{doc_, revision_, approx_bytes(doc_)};
+  history_bytes_ += current.bytes;
+  undo_.push_back(std::move(current));
+  trim_history();
   revision_ = next_revision_++;
 }
 
 bool CaseDraft::undo() {
   if (undo_.empty()) return false;
-  redo_.push_back({std::move(doc_), revision_});
+  redo_.push_back(take_current());
+  history_bytes_ += redo_.back().bytes;
+  history_bytes_ -= undo_.back().bytes;
   doc_ = std::move(undo_.back().doc);
   revision_ = undo_.back().revision;
   undo_.pop_back();
@@ -125,11 +176,22 @@ bool CaseDraft::undo() {
 
 bool CaseDraft::redo() {
   if (redo_.empty()) return false;
-  undo_.push_back({std::move(doc_), revision_});
+  undo_.push_back(take_current());
+  history_bytes_ += undo_.back().bytes;
+  history_bytes_ -= redo_.back().bytes;
   doc_ = std::move(redo_.back().doc);
   revision_ = redo_.back().revision;
   redo_.pop_back();
   return true;
+}
+
+json CaseDraft::body_id(std::size_t b) const {
+  const json& doc = doc_;  // const: operator[] must not insert
+  if (!doc.is_object() || !doc.contains("bodies") || !doc["bodies"].is_array() || b >= doc["bodies"].size() ||
+      !doc["bodies"][b].is_object() || !doc["bodies"][b].contains("id")) {
+    throw std::out_of_range("no body " + std::to_string(b));
+  }
+  return doc["bodies"][b]["id"];
 }
 
 json& CaseDraft::tumour_json(std::size_t k) {
@@ -149,7 +211,11 @@ void CaseDraft::apply_preset(const PresetParams& params) {
   const std::string id = made.bodies.front().id;
   if (doc_.contains("tumors") && doc_["tumors"].is_array()) {
     for (auto& t : doc_["tumors"]) {
-      if (t.is_object()) t["body"] = id;
+      if (!t.is_object()) continue;
+      t["body"] = id;
+      // The tumour stays where it is; its anchor is a point of the old skin, so it goes:
+      // the depth is then measured to the new skin straight above (anchor()).
+      t.erase("anchor");
     }
   }
   // An exam region names the old bodies; the new body is examined whole.
@@ -157,18 +223,15 @@ void CaseDraft::apply_preset(const PresetParams& params) {
 }
 
 void CaseDraft::set_title(const std::string& title) {
+  // Checked first: a failed edit must not leave an undo step behind.
+  if (!doc_.is_object() && !doc_.is_null()) throw std::invalid_argument("the case is not a JSON object: it has no title");
   begin_edit();
   doc_["title"] = title;
 }
 
 std::size_t CaseDraft::add_tumour(const SurfacePoint& where, const TumourSpec& spec) {
   const auto n = unit_normal(where.normal);
-  const auto& bodies = doc_.is_object() && doc_.contains("bodies") ? doc_["bodies"] : json();
-  if (!bodies.is_array() || where.body >= bodies.size() || !bodies[where.body].is_object() ||
-      !bodies[where.body].contains("id")) {
-    throw std::out_of_range("no body " + std::to_string(where.body));
-  }
-  const json id = bodies[where.body]["id"];
+  const json id = body_id(where.body);
   begin_edit();
   if (!doc_.contains("tumors") || !doc_["tumors"].is_array()) doc_["tumors"] = json::array();
   doc_["tumors"].push_back({{"body", id},
@@ -183,11 +246,7 @@ void CaseDraft::move_tumour(std::size_t k, const SurfacePoint& where) {
   const auto old = spec(k);
   if (!old) throw std::out_of_range("tumour " + std::to_string(k) + " has no depth to keep");
   const auto n = unit_normal(where.normal);
-  const auto& bodies = doc_["bodies"];
-  if (!bodies.is_array() || where.body >= bodies.size() || !bodies[where.body].contains("id")) {
-    throw std::out_of_range("no body " + std::to_string(where.body));
-  }
-  const json id = bodies[where.body]["id"];
+  const json id = body_id(where.body);
   (void)tumour_json(k);
   begin_edit();
   json& t = tumour_json(k);
@@ -198,15 +257,20 @@ void CaseDraft::move_tumour(std::size_t k, const SurfacePoint& where) {
 
 void CaseDraft::edit_tumour(std::size_t k, const TumourSpec& spec) {
   (void)tumour_json(k);
-  const auto where = anchor(k);
-  if (!where) throw std::out_of_range("tumour " + std::to_string(k) + " lies under no surface point");
-  const auto n = unit_normal(where->normal);
+  const auto old = this->spec(k);
+  // Recomputing the centre from the anchor would round it: only a new depth moves it.
+  const bool deeper = !old || old->depth != spec.depth;
+  const auto where = deeper ? anchor(k) : std::nullopt;
+  if (deeper && !where) throw std::out_of_range("tumour " + std::to_string(k) + " lies under no surface point");
+  const auto n = deeper ? unit_normal(where->normal) : std::array<double, 3>{};
   begin_edit();
   json& t = tumour_json(k);
-  t["center"] = below(*where, spec.depth);
+  if (deeper) {
+    t["center"] = below(*where, spec.depth);
+    t["anchor"] = {{"point", where->point}, {"normal", n}};
+  }
   t["radius"] = spec.radius;
   t["stiffness"] = spec.stiffness;
-  t["anchor"] = {{"point", where->point}, {"normal", n}};
 }
 
 void CaseDraft::remove_tumour(std::size_t k) {

@@ -33,6 +33,9 @@ struct TumourSpec {
   double stiffness = 2000.0; ///< N/m: a ~100 kPa region under a fingertip (palpation.md, flat punch)
 };
 
+/// Approximate memory (bytes) a JSON value holds: its nodes, strings and containers.
+std::size_t approx_bytes(const nlohmann::json& value);
+
 class CaseDraft {
  public:
   /// A new case from a preset at `params`.
@@ -68,9 +71,12 @@ class CaseDraft {
   // --- Edits: each is one undo step. Tumour indices are those of the "tumors" array. ---
 
   /// Replaces the case's bodies by the preset's body and records the parameters (root field
-  /// "preset"). Tumours are kept (re-pointed to the new body): one that no longer fits
-  /// shows up in validate(). Throws std::invalid_argument outside the preset's limits.
+  /// "preset"). Tumours are kept where they are (re-pointed to the new body) and lose their
+  /// anchor, a point of the old skin, so that their depth is measured to the new skin; one
+  /// that no longer fits shows up in validate(). Throws std::invalid_argument outside the
+  /// preset's limits.
   void apply_preset(const PresetParams& params);
+  /// Throws std::invalid_argument (and records nothing) when the document is not an object.
   void set_title(const std::string& title);
   /// Adds a tumour `spec.depth` below `where` along its inward normal; returns its index.
   /// The picked point and normal are kept in the tumour ("anchor", an authoring field
@@ -78,7 +84,9 @@ class CaseDraft {
   std::size_t add_tumour(const SurfacePoint& where, const TumourSpec& spec);
   /// Moves tumour k under another surface point, keeping its depth, radius and stiffness.
   void move_tumour(std::size_t k, const SurfacePoint& where);
-  /// Sets tumour k's depth (below its anchor), radius and stiffness.
+  /// Sets tumour k's depth (below its anchor), radius and stiffness. The centre is rewritten
+  /// only when spec.depth differs from spec(k)'s, so that editing the radius or stiffness
+  /// leaves it exactly as written.
   void edit_tumour(std::size_t k, const TumourSpec& spec);
   void remove_tumour(std::size_t k);
   /// Sets (or with nothing, removes) tumour k's randomization rule.
@@ -108,22 +116,38 @@ class CaseDraft {
   /// Restores the document before the last edit; false when there is none.
   bool undo();
   bool redo();
-  /// Edits kept for undo (the oldest are dropped beyond it).
-  static constexpr std::size_t kMaxUndo = 200;
+  /// How much history undo keeps: the oldest steps are dropped beyond either limit (the
+  /// newest step is always kept, so the last edit can be undone).
+  struct UndoLimits {
+    std::size_t steps = 200;
+    std::size_t bytes = std::size_t{256} << 20;  ///< approximate memory of the kept documents (undo and redo)
+  };
+  void set_undo_limits(const UndoLimits& limits);
+  const UndoLimits& undo_limits() const { return limits_; }
+  /// The approximate memory the undo and redo documents hold (approx_bytes of each).
+  std::size_t history_bytes() const { return history_bytes_; }
 
  private:
   struct State {
     nlohmann::json doc;
     std::uint64_t revision = 0;
+    std::size_t bytes = 0;  // approx_bytes(doc)
   };
   /// Records the current document for undo and starts a new revision.
   void begin_edit();
+  /// Drops the oldest undo steps beyond the limits.
+  void trim_history();
+  State take_current();
   nlohmann::json& tumour_json(std::size_t k);  // throws std::out_of_range
+  /// The id of body b; throws std::out_of_range when there is none (never inserts).
+  nlohmann::json body_id(std::size_t b) const;
 
   nlohmann::json doc_;
   std::filesystem::path path_;
   std::string source_ = "untitled";
   std::vector<State> undo_, redo_;
+  UndoLimits limits_;
+  std::size_t history_bytes_ = 0;
   std::uint64_t revision_ = 0, next_revision_ = 1, saved_revision_ = 0;
 };
 

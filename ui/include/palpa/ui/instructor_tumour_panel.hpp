@@ -46,13 +46,15 @@ class InstructorTumourPanel : public QGroupBox {
 
  signals:
   void selection_changed(std::optional<std::size_t> k);
+  /// The selected tumour's spec: the draft's, with the one field the instructor changed.
   void spec_changed(std::size_t k, const palpa::author::TumourSpec& spec);
   void placement_changed(std::size_t k, const std::optional<palpa::exercise::Placement>& rule);
   void remove_requested(std::size_t k);
 
  private:
   void show_selected();
-  void emit_spec();
+  /// Emits the selected tumour's spec with only `changed`'s field from the boxes.
+  void emit_spec(const QDoubleSpinBox* changed);
   void emit_placement();
 
   const author::CaseDraft* draft_ = nullptr;

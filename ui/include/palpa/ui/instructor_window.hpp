@@ -19,6 +19,7 @@
 #include <vtkSmartPointer.h>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/engine/device.hpp"
 #include "palpa/trainer/surface_pick.hpp"
 
 class QAction;
@@ -56,6 +57,16 @@ class InstructorWindow : public QMainWindow {
   QPoint to_view(const trainer::Vec3& point) const;
   /// Where "Try it" records its sessions (created when needed).
   void set_sessions_dir(const std::filesystem::path& dir) { sessions_dir_ = dir; }
+  /// The device "Try it" opens the trainee window with, called once per try (e.g. the
+  /// application's chosen device). It may return null (the virtual device the pointer
+  /// steers, also the default without an opener) or throw std::exception: the first line
+  /// of what() is shown and no trainee window opens.
+  void set_device_opener(std::function<std::shared_ptr<engine::Device>()> opener) {
+    device_opener_ = std::move(opener);
+  }
+  /// Where Save As writes (an empty string: cancelled). Default: a file dialog that adds
+  /// ".json" to a name without it before asking whether to replace an existing file.
+  void set_save_path_chooser(std::function<QString()> chooser) { save_path_chooser_ = std::move(chooser); }
   /// The newest trainee window "Try it" opened, while it is open.
   TraineeWindow* try_window() const { return try_windows_.empty() ? nullptr : try_windows_.back().data(); }
   /// The last message shown in the status bar (errors included).
@@ -69,6 +80,10 @@ class InstructorWindow : public QMainWindow {
   /// Saves to the case's file; false without one, or when the case has problems (listed).
   bool save();
   bool save_as(const QString& path);
+  /// Save As through the chooser: ".json" is added to a name without it, and a file of that
+  /// name the chooser did not ask about is replaced only when the instructor says so.
+  /// False when cancelled or not saved.
+  bool save_as_dialog();
   void new_case(author::Preset preset);
   void undo();
   void redo();
@@ -85,6 +100,7 @@ class InstructorWindow : public QMainWindow {
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
+  /// Closing (accepted) also closes the Try-it trainee windows, which finishes their sessions.
   void closeEvent(QCloseEvent* event) override;
 
  private:
@@ -100,8 +116,15 @@ class InstructorWindow : public QMainWindow {
   void set_message(const QString& text);
   void update_title();
   bool confirm_discard();
+  /// Makes the focused editor of this window commit what was typed in it (its
+  /// editingFinished and value), so that the action about to run sees it.
+  void commit_pending();
+  /// Side-panel editors: Undo/Redo keys reach the window; the wheel changes a value only
+  /// with focus (so scrolling the panel does not edit the case).
+  void guard_editors();
+  bool filter_editor_event(QWidget* editor, QEvent* event);
+  QString choose_save_path();
   void open_dialog();
-  void save_as_dialog();
   void import_dialog();
 
   author::CaseDraft draft_;
@@ -119,6 +142,8 @@ class InstructorWindow : public QMainWindow {
   std::unique_ptr<InstructorScene> scene_;
   nlohmann::json drawn_bodies_;  // the "bodies" the view shows
   std::filesystem::path sessions_dir_;
+  std::function<std::shared_ptr<engine::Device>()> device_opener_;
+  std::function<QString()> save_path_chooser_;
   std::vector<QPointer<TraineeWindow>> try_windows_;
   QString message_;
   QPoint press_at_;
