@@ -82,6 +82,11 @@ void AppWindows::adopt(QMainWindow& window) {
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
   connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
   add_device_menu(window);
+  // The instructor's Try it palpates with the device chosen here, like any exercise.
+  if (auto* instructor = qobject_cast<ui::InstructorWindow*>(&window)) {
+    instructor->set_device_opener(
+        [this, instructor] { return open_chosen_device_with_progress(settings_.device, instructor); });
+  }
 }
 
 void AppWindows::add_device_menu(QMainWindow& window) {

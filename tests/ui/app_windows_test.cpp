@@ -12,6 +12,7 @@
 #include <QtTest>
 
 #include "app_windows.hpp"
+#include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/mode_menu.hpp"
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -105,6 +106,21 @@ class AppWindowsTest : public QObject {
     QVERIFY2(app.last_error().startsWith("falcon"), qPrintable(app.last_error()));
     QVERIFY(!app.last_error().contains('\n'));
     QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 1);
+  }
+
+  void instructorTryItUsesTheChosenDevice() {
+    palpa::gui::AppWindows app({"ui-test", 3, {}, {}});
+    auto* window = qobject_cast<palpa::ui::InstructorWindow*>(app.open_instructor(QString()));
+    QVERIFY2(window, qPrintable(app.last_error()));
+    // No Falcon here: Try it is refused (the reason shown in the window), nothing opens.
+    app.choose_device("falcon");
+    QVERIFY(!window->try_it());
+    QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 0);
+    // The mouse: Try it opens an exercise on the edited case.
+    app.choose_device("virtual");
+    auto* trainee = window->try_it();
+    QVERIFY(trainee);
+    QCOMPARE(trainee->exercise().device_name(), std::string("virtual (mouse)"));
   }
 
   void badFilesAreRefusedWithOneLineNamingThem() {
