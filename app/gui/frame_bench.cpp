@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,10 +15,12 @@
 #include <QApplication>
 #include <QEventLoop>
 #include <QTimer>
+#include <QWindow>
 
 #include "palpa/scene/table1_scenes.hpp"
 #include "palpa/trainer/live_exercise.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::gui {
 namespace {
@@ -71,6 +74,15 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
   window.set_frame_interval(-1);  // this driver draws the frames, uncapped
   if (zoomed) window.look_at_body(0);
   window.show();
+  // Measure only once the view's native window is on screen: before that VTK's Render()
+  // returns at once and would count empty frames (seen on a loaded machine).
+  {
+    const auto shown_by = Clock::now() + std::chrono::seconds(10);
+    while (!window.view()->input()->isExposed() && Clock::now() < shown_by) {
+      QApplication::processEvents(QEventLoop::AllEvents, 20);
+    }
+    if (!window.view()->input()->isExposed()) throw std::runtime_error("the view was not shown within 10 s");
+  }
 
   Row row;
   row.bodies = spec.bodies;
