@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <exception>
 #include <memory>
 #include <random>
@@ -26,20 +25,12 @@
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/mode_menu.hpp"
 #include "palpa/ui/review_window.hpp"
+#include "palpa/ui/session_paths.hpp"
 #include "palpa/ui/trainee_window.hpp"
 
 namespace palpa::gui {
 
 namespace {
-
-std::string utc_stamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
-  return text;
-}
 
 std::uint64_t fresh_seed() {
   std::random_device entropy;
@@ -50,19 +41,7 @@ QString file_name(const QString& path) { return QString::fromStdString(std::file
 
 }  // namespace
 
-std::filesystem::path default_session_path() {
-  const char* data = std::getenv("XDG_DATA_HOME");
-  const char* home = std::getenv("HOME");
-  std::filesystem::path base = data && *data ? std::filesystem::path(data)
-                               : home && *home ? std::filesystem::path(home) / ".local" / "share"
-                                               : std::filesystem::temp_directory_path();
-  auto path = base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + ".palpa");
-  // Two exercises started in the same second must not share a file.
-  for (int k = 2; std::filesystem::exists(path); ++k) {
-    path = base / "palpa" / "sessions" / ("trainee-" + utc_stamp() + "-" + std::to_string(k) + ".palpa");
-  }
-  return path;
-}
+std::filesystem::path default_session_path() { return ui::new_session_path(ui::sessions_dir(), "trainee"); }
 
 AppWindows::AppWindows(TraineeSettings settings) : settings_(std::move(settings)) {}
 

@@ -344,29 +344,12 @@ void InstructorWindow::render() {
 }
 
 QPoint InstructorWindow::to_view(const trainer::Vec3& point) const {
-  renderer_->SetWorldPoint(point.x(), point.y(), point.z(), 1.0);
-  renderer_->WorldToDisplay();
-  double d[3];
-  renderer_->GetDisplayPoint(d);
-  const double dpr = view_->devicePixelRatioF();
-  const int* size = render_window_->GetSize();
-  return {static_cast<int>(std::lround(d[0] / dpr)), static_cast<int>(std::lround((size[1] - 1 - d[1]) / dpr))};
+  return view_->to_view(*renderer_, point);
 }
 
 bool InstructorWindow::click_at(const QPoint& pos, bool move_selected) {
-  const double dpr = view_->devicePixelRatioF();
-  const int* size = render_window_->GetSize();
-  const double x = pos.x() * dpr;
-  const double y = size[1] - 1 - pos.y() * dpr;
-  trainer::Vec3 ends[2];
-  for (int k = 0; k < 2; ++k) {
-    renderer_->SetDisplayPoint(x, y, k);
-    renderer_->DisplayToWorld();
-    double w[4];
-    renderer_->GetWorldPoint(w);
-    ends[k] = trainer::Vec3(w[0], w[1], w[2]) / (w[3] != 0.0 ? w[3] : 1.0);
-  }
-  const auto hit = scene_->pick(ends[0], ends[1] - ends[0]);
+  const auto [near, far] = view_->pointer_ray(*renderer_, pos);
+  const auto hit = scene_->pick(near, far - near);
   if (!hit) {
     set_message(tr("Click on the body to place a tumour there."));
     return false;

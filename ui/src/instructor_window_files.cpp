@@ -1,7 +1,6 @@
 // The instructor window's files: New, Open, Save (As) with validation, the stiffness map
 // import, and "Try it" (the case in a trainee window, recording a session).
 #include <cstdlib>
-#include <ctime>
 #include <random>
 
 #include <QCloseEvent>
@@ -13,31 +12,10 @@
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_stiffness_image.hpp"
 #include "palpa/ui/instructor_window.hpp"
+#include "palpa/ui/session_paths.hpp"
 #include "palpa/ui/trainee_window.hpp"
 
 namespace palpa::ui {
-namespace {
-
-std::string utc_stamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
-  return text;
-}
-
-// As palpa's trainee mode: $XDG_DATA_HOME/palpa/sessions, else ~/.local/share/palpa/sessions.
-std::filesystem::path default_sessions_dir() {
-  const char* data = std::getenv("XDG_DATA_HOME");
-  const char* home = std::getenv("HOME");
-  const std::filesystem::path base = data && *data ? std::filesystem::path(data)
-                                     : home && *home ? std::filesystem::path(home) / ".local" / "share"
-                                                     : std::filesystem::temp_directory_path();
-  return base / "palpa" / "sessions";
-}
-
-}  // namespace
 
 bool InstructorWindow::open_case(const QString& path) {
   commit_pending();
@@ -128,9 +106,9 @@ TraineeWindow* InstructorWindow::try_it() {
   options.mode = "instructor-try";
   std::random_device entropy;
   options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
-  const std::filesystem::path dir = sessions_dir_.empty() ? default_sessions_dir() : sessions_dir_;
+  const std::filesystem::path dir = sessions_dir_.empty() ? ui::sessions_dir() : sessions_dir_;
   std::string name = "tryout-";
-  name += utc_stamp();
+  name += ui::utc_stamp();
   name += "-";
   name += std::to_string(++try_count_);
   name += ".palpa";

@@ -9,10 +9,15 @@
 //
 // The view's mouse, wheel and key events arrive at the embedded window, input(): install
 // event filters there, and send synthetic events there in tests.
+#include <utility>
+
+#include <Eigen/Core>
 #include <QImage>
+#include <QPoint>
 #include <QVTKOpenGLStereoWidget.h>
 
 class QWindow;
+class vtkRenderer;
 
 namespace palpa::ui {
 
@@ -25,6 +30,12 @@ class VtkView : public QVTKOpenGLStereoWidget {
   QWindow* input() const;
   /// The view's last frame as drawn (for screenshots); null before the first frame.
   QImage frame();
+
+  /// The line under a view pixel (widget coordinates) as seen through `renderer`: its
+  /// points on the near and far clipping planes (m, scene coordinates).
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> pointer_ray(vtkRenderer& renderer, const QPoint& pos) const;
+  /// Where a scene point (m) appears in the view (widget pixels).
+  QPoint to_view(vtkRenderer& renderer, const Eigen::Vector3d& point) const;
 };
 
 }  // namespace palpa::ui
