@@ -32,6 +32,7 @@
 #include "palpa/ui/instructor_scene.hpp"
 #include "palpa/ui/instructor_tumour_panel.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/body_view.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::ui {
@@ -169,22 +170,14 @@ void InstructorWindow::commit_pending() {
 
 void InstructorWindow::build_view() {
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
-  render_window_->SetMultiSamples(0);  // software OpenGL: MSAA costs most of a frame
   render_window_->SetNumberOfLayers(2);
-  view_->setRenderWindow(render_window_);
-  renderer_ = vtkSmartPointer<vtkRenderer>::New();
-  renderer_->SetBackground(0.13, 0.15, 0.19);
-  renderer_->SetBackground2(0.30, 0.33, 0.40);
-  renderer_->GradientBackgroundOn();
-  render_window_->AddRenderer(renderer_);
+  renderer_ = add_body_renderer(*view_, render_window_);
   // Tumours in a layer over the bodies, with the same camera: seen through the skin.
   overlay_renderer_ = vtkSmartPointer<vtkRenderer>::New();
   overlay_renderer_->SetLayer(1);
   overlay_renderer_->InteractiveOff();
   overlay_renderer_->SetActiveCamera(renderer_->GetActiveCamera());
   render_window_->AddRenderer(overlay_renderer_);
-  vtkNew<vtkInteractorStyleTrackballCamera> style;
-  view_->interactor()->SetInteractorStyle(style);
   scene_ = std::make_unique<InstructorScene>(renderer_, overlay_renderer_);
 }
 
@@ -321,16 +314,8 @@ void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
 }
 
 void InstructorWindow::frame_camera() {
-  auto* camera = renderer_->GetActiveCamera();
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetPosition(0.0, -1.0, 0.75);  // from the front and above: the skin and the dome's profile
-  camera->SetViewUp(0.0, 0.0, 1.0);
-  if (scene_->has_bodies()) {
-    auto b = scene_->bounds();
-    renderer_->ResetCamera(b.data());
-    camera->Zoom(1.3);
-    renderer_->ResetCameraClippingRange(b.data());
-  }
+  // Lower than the trainee's view: the skin and the dome's profile.
+  if (scene_->has_bodies()) frame_from_front(*renderer_, scene_->bounds(), 0.75, 1.3);
   render();
 }
 

@@ -34,6 +34,7 @@
 #include "palpa/report/session_header.hpp"
 #include "palpa/report/session_report.hpp"
 #include "palpa/ui/session_charts.hpp"
+#include "palpa/ui/body_view.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
 namespace palpa::ui {
@@ -142,35 +143,11 @@ ReviewWindow::~ReviewWindow() = default;
 
 void ReviewWindow::build_scene() {
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
-  render_window_->SetMultiSamples(0);  // software OpenGL: see TraineeWindow
-  view_->setRenderWindow(render_window_);
-  renderer_ = vtkSmartPointer<vtkRenderer>::New();
-  renderer_->SetBackground(0.13, 0.15, 0.19);
-  renderer_->SetBackground2(0.30, 0.33, 0.40);
-  renderer_->GradientBackgroundOn();
-  render_window_->AddRenderer(renderer_);
-  vtkNew<vtkInteractorStyleTrackballCamera> style;
-  view_->interactor()->SetInteractorStyle(style);
+  renderer_ = add_body_renderer(*view_, render_window_);
 
   surfaces_ = std::make_unique<BodySurfaces>(*meshes_, renderer_);
   surfaces_->set_opacity(0.35);  // the tumours are revealed inside
-  double bounds[6] = {std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
-  for (std::size_t b = 0; b < scene_->size(); ++b) {
-    const auto& box = scene_->body(b).bounds;
-    for (int k = 0; k < 3; ++k) {
-      bounds[2 * k] = std::min(bounds[2 * k], box.lo[k]);
-      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], box.hi[k]);
-    }
-  }
-  auto* camera = renderer_->GetActiveCamera();
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetPosition(0.0, -1.0, 0.9);
-  camera->SetViewUp(0.0, 0.0, 1.0);
-  if (scene_->size() > 0) renderer_->ResetCamera(bounds);
-  camera->Zoom(1.25);
-  renderer_->ResetCameraClippingRange(bounds);
+  frame_from_front(*renderer_, scene_bounds(*scene_));
 
   for (const auto& t : score_.tumours) {
     renderer_->AddActor(t.found ? sphere(t.center, t.radius, 0.20, 0.65, 0.25) : sphere(t.center, t.radius, 0.75, 0.15, 0.15));

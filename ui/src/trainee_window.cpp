@@ -29,6 +29,7 @@
 #include <vtkSphereSource.h>
 
 #include "palpa/render/frustum.hpp"
+#include "palpa/ui/body_view.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/vtk_view.hpp"
@@ -151,38 +152,10 @@ TraineeWindow::~TraineeWindow() = default;
 
 void TraineeWindow::build_scene() {
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
-  // No multisampling: with software OpenGL (Mesa llvmpipe under Xvfb) 8x MSAA costs most of
-  // a frame; smooth shading and the normals keep the surface smooth without it.
-  render_window_->SetMultiSamples(0);
-  view_->setRenderWindow(render_window_);
-  renderer_ = vtkSmartPointer<vtkRenderer>::New();
-  renderer_->SetBackground(0.13, 0.15, 0.19);
-  renderer_->SetBackground2(0.30, 0.33, 0.40);
-  renderer_->GradientBackgroundOn();
-  render_window_->AddRenderer(renderer_);
-  vtkNew<vtkInteractorStyleTrackballCamera> style;
-  view_->interactor()->SetInteractorStyle(style);
+  renderer_ = add_body_renderer(*view_, render_window_);
 
   surfaces_ = std::make_unique<BodySurfaces>(exercise_->meshes(), renderer_);
-  // Frame the bodies (not the probe) from the front and above.
-  const auto& scene = exercise_->scene();
-  double bounds[6] = {std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
-                      std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
-  for (std::size_t b = 0; b < scene.size(); ++b) {
-    const auto& box = scene.body(b).bounds;
-    for (int k = 0; k < 3; ++k) {
-      bounds[2 * k] = std::min(bounds[2 * k], box.lo[k]);
-      bounds[2 * k + 1] = std::max(bounds[2 * k + 1], box.hi[k]);
-    }
-  }
-  auto* camera = renderer_->GetActiveCamera();
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetPosition(0.0, -1.0, 0.9);
-  camera->SetViewUp(0.0, 0.0, 1.0);
-  if (scene.size() > 0) renderer_->ResetCamera(bounds);
-  camera->Zoom(1.25);
-  renderer_->ResetCameraClippingRange(bounds);
+  frame_from_front(*renderer_, scene_bounds(exercise_->scene()));  // the bodies, not the probe
 
   probe_ = sphere_actor(trainer::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
   // Opaque: one translucent actor makes VTK add its order-independent translucency passes
