@@ -40,6 +40,13 @@ enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
 
 void print_error(const std::string& message) { std::fprintf(stderr, "palpa: error: %s\n", message.c_str()); }
 
+// --screenshot: the window drawn once at its default size, saved; the exit code.
+int screenshot_of(QWidget& window, const std::string& path) {
+  if (palpa::ui::save_screenshot(window, QString::fromStdString(path))) return kOk;
+  print_error(path + ": could not write the screenshot");
+  return kFailure;
+}
+
 void init_gui_format() {
   // VTK's OpenGL needs this format on every Qt GL surface: set before QApplication exists.
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
@@ -76,11 +83,7 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
     if (!screenshot.empty()) {
       palpa::ui::ReviewWindow window(std::move(session), std::move(score), session_path);
       window.set_time(window.span().end);  // the whole exam: every mark standing at the end
-      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
-        print_error(screenshot + ": could not write the screenshot");
-        return kFailure;
-      }
-      return kOk;
+      return screenshot_of(window, screenshot);
     }
     palpa::gui::AppWindows windows(settings);
     auto* window = new palpa::ui::ReviewWindow(std::move(session), std::move(score), session_path);
@@ -118,11 +121,7 @@ int run_instructor(int argc, char** argv, const std::string& case_path, const st
   try {
     if (!screenshot.empty()) {
       palpa::ui::InstructorWindow window(std::move(draft));
-      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
-        print_error(screenshot + ": could not write the screenshot");
-        return kFailure;
-      }
-      return kOk;
+      return screenshot_of(window, screenshot);
     }
     palpa::gui::AppWindows windows(settings);
     auto* window = new palpa::ui::InstructorWindow(std::move(draft));
@@ -271,11 +270,7 @@ int main(int argc, char** argv) {
     const QString name = QString::fromStdString(std::filesystem::path(case_path).filename().string());
     if (!screenshot.empty()) {
       palpa::ui::TraineeWindow window(std::move(exercise), name, false);
-      if (!palpa::ui::save_screenshot(window, QString::fromStdString(screenshot))) {
-        print_error(screenshot + ": could not write the screenshot");
-        return kFailure;
-      }
-      return kOk;
+      return screenshot_of(window, screenshot);
     }
     palpa::gui::AppWindows windows(settings);
     auto* window = new palpa::ui::TraineeWindow(std::move(exercise), name);
