@@ -104,7 +104,8 @@ def make_default():
     def stiffness(i, j):
         return K_PERIPHERY + (K_CENTRE - K_PERIPHERY) * bump(*breast_st(i, j))
 
-    b = body("breast", BREAST_ROWS, BREAST_COLS, point, radius, stiffness)
+    # The breast lies on the chest wall: only its top contour (the skin) can be touched.
+    b = body("breast", BREAST_ROWS, BREAST_COLS, point, radius, stiffness, extra={"support": "bottom"})
 
     # One mass in the upper-outer region, off the apex, at mid-depth (on the
     # skeleton, halfway between chest wall and skin).
@@ -265,17 +266,17 @@ def make_two_bodies():
         return lambda i, j: height / 2 * bump(unit(n, i), unit(n, j))
 
     left = body("left", n, n, dome(-0.06, 0.03), radius(0.03), lambda i, j: 200.0,
-                extra={"comment": "defaults apply for damping and mass"})
+                extra={"support": "bottom", "comment": "defaults apply for damping and mass"})
     right = body("right", n, n, dome(0.06, 0.02), radius(0.02),
                  lambda i, j: 400.0 + 200.0 * bump(unit(n, i), unit(n, j)),
                  damping=lambda i, j: 1.5, mass=lambda i, j: 2e-3,
-                 extra={"comment": "explicit damping (N s/m) and mass (kg)"})
+                 extra={"support": "bottom", "comment": "explicit damping (N s/m) and mass (kg)"})
     return case(
         "Two bodies: separate domes",
         [left, right],
         author="Palpa project",
         description=(
-            "Two separated 5x5 domes, ids \"left\" and \"right\"; \"right\" has explicit "
+            "Two separated 5x5 domes on a table (support \"bottom\"), ids \"left\" and \"right\"; \"right\" has explicit "
             "damping and mass arrays. The \"author\" and \"comment\" fields are unknown to "
             "format v1 and must be preserved on load and save."
         ),

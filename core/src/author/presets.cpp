@@ -129,6 +129,9 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
 
   mat::BodyGrid g;
   g.id = to_string(p.preset);
+  // Every preset rests on something rigid: the chest wall, the pelvis, the body under a
+  // skin patch, the table under a phantom slab. Only the top can be touched.
+  g.support = mat::Support::Bottom;
   g.rows = p.rows;
   g.cols = p.cols;
   const double half_t = p.thickness / 2;

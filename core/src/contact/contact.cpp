@@ -58,4 +58,24 @@ Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3
   return c;
 }
 
+Contact top_side_contact(const Contact& c, const Vec3& q) {
+  const Vec3 n = c.foot.su.cross(c.foot.sv);
+  const double nn = n.norm();
+  if (!(nn > 0.0)) return c;  // no normal (a pole): the radial reading is all there is
+  const Vec3 unit_n = n / nn;
+  const double len = (q - c.foot.point).norm();
+  const double s = len * c.outward.dot(unit_n);  // signed height over the skeleton
+  Contact top = c;
+  top.side = 1;
+  if (s >= 0.0) return top;
+  const double depth = c.depth - 2.0 * s;  // R - |PQ| + 2|s|
+  const double thickness = 2.0 * c.radius;
+  top.depth = std::min(depth, thickness);
+  top.support_depth = std::max(0.0, depth - thickness);
+  top.inside = depth >= 0.0;
+  const Vec3 mirrored = c.outward - 2.0 * c.outward.dot(unit_n) * unit_n;
+  top.outward = mirrored.norm() > 0.0 ? Vec3(mirrored.normalized()) : unit_n;
+  return top;
+}
+
 }  // namespace palpa::contact

@@ -1,5 +1,7 @@
 #include "palpa/contact/force.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -70,14 +72,31 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
                     std::span<const mat::Tumour> tumours, const ForceOptions& options) {
   Force f;
   if (!contact.inside) return f;
-  f.normal = contact.stiffness * contact.depth * contact.outward;
-  if (options.shear) f.shear = shear_force(body, contact, q, options.shear_delta);
+  // On a support the tissue compresses at most to its thickness; the rest is the wall.
+  const bool anchored = body.anchored();
+  const double tissue = contact.depth;  // at most 2R on a support (top_side_contact)
+  f.normal = contact.stiffness * tissue * contact.outward;
+  if (options.shear) {
+    // The shear springs stretch to the probe, or to the bottom contour under it once the
+    // press is in the support (equal to q while the press is in the tissue).
+    const Vec3 at = anchored ? Vec3(contact.foot.point + (contact.radius - tissue) * contact.outward) : q;
+    f.shear = shear_force(body, contact, at, options.shear_delta);
+  }
   double tumour = 0.0;
   for (const auto& t : tumours) {
-    tumour += tumour_spring(t, contact.foot.point, contact.outward, contact.radius, contact.depth, options.tumour);
+    tumour += tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue, options.tumour);
   }
   f.tumour = tumour * contact.outward;
-  f.total = f.normal + f.shear + f.tumour;
+  if (anchored) f.support = options.support_stiffness * contact.support_depth * contact.outward;
+  f.total = f.normal + f.shear + f.tumour + f.support;
+  if (anchored) {
+    // Nothing may push the finger into the support: drop a component along -N (a shear
+    // spring to a lower neighbour on a steep flank can have one).
+    const Vec3 n = contact.foot.su.cross(contact.foot.sv);
+    const double nn = n.squaredNorm();
+    const double into = nn > 0.0 ? f.total.dot(n) : 0.0;
+    if (into < 0.0) f.total -= (into / nn) * n;
+  }
   const double magnitude = f.total.norm();
   if (!std::isfinite(magnitude)) {
     f = Force{};  // never hand a device a NaN

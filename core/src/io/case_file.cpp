@@ -223,6 +223,17 @@ void check_coincident(const mat::BodyGrid& g, const std::string& base, Validator
   }
 }
 
+// "support": what the body rests on (docs/case-format.md); absent means "free".
+void read_support(const json& body, const std::string& base, Validator& v, mat::Support& support) {
+  if (!body.contains("support")) return;
+  const json& s = body["support"];
+  if (s == "bottom") {
+    support = mat::Support::Bottom;
+  } else if (s != "free") {
+    v.add(base + "/support", "support must be \"free\" or \"bottom\", not " + brief(s));
+  }
+}
+
 void read_body(const json& body, std::size_t index, std::set<std::string>& ids, Validator& v,
                std::vector<mat::BodyGrid>& bodies) {
   const std::string base = "/bodies/" + std::to_string(index);
@@ -246,6 +257,7 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
     if (!ids.insert(g.id).second) v.add(base + "/id", "duplicate body id \"" + g.id + "\"");
   }
 
+  read_support(body, base, v, g.support);
   const bool rows_ok = read_int(body, base, "rows", L::kMinGrid, L::kMaxGrid, v, g.rows);
   const bool cols_ok = read_int(body, base, "cols", L::kMinGrid, L::kMaxGrid, v, g.cols);
   if (!rows_ok || !cols_ok) return;  // the per-point arrays cannot be checked without a size
@@ -441,6 +453,7 @@ json to_json(const CaseFile& file) {
       if (old.is_object() && old.contains("id") && old["id"] == g.id) b = old;
     }
     b["id"] = g.id;
+    if (g.support == mat::Support::Bottom || b.contains("support")) b["support"] = mat::to_string(g.support);
     b["rows"] = g.rows;
     b["cols"] = g.cols;
     b["medial"] = g.medial;

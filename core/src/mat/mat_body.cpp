@@ -86,9 +86,12 @@ bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v,
   return false;
 }
 
-MatBody::MatBody(std::string id, std::vector<double> u, std::vector<double> v, spline::BSplineSurface skeleton,
-                 spline::BSplineSurface top, spline::BSplineSurface bottom)
+const char* to_string(Support support) { return support == Support::Bottom ? "bottom" : "free"; }
+
+MatBody::MatBody(std::string id, Support support, std::vector<double> u, std::vector<double> v,
+                 spline::BSplineSurface skeleton, spline::BSplineSurface top, spline::BSplineSurface bottom)
     : id_(std::move(id)),
+      support_(support),
       u_params_(std::move(u)),
       v_params_(std::move(v)),
       skeleton_(std::move(skeleton)),
@@ -131,7 +134,7 @@ MatBody MatBody::fit(const BodyGrid& grid, const FitOptions& options) {
     }
     auto top_surface = interpolator.interpolate(top, 3);
     auto bottom_surface = interpolator.interpolate(bottom, 3);
-    return {grid.id,          interpolator.u_params(),   interpolator.v_params(), std::move(skeleton),
+    return {grid.id,          grid.support, interpolator.u_params(),   interpolator.v_params(), std::move(skeleton),
             std::move(top_surface), std::move(bottom_surface)};
   } catch (const spline::InterpolationError& e) {
     throw FitError("body '" + grid.id + "': " + e.what());

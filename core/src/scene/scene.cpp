@@ -98,12 +98,14 @@ ProbeState Scene::make_state() const {
   s.v.assign(bodies_.size(), 0.0);
   s.warm.assign(bodies_.size(), 0);
   s.entry_side.assign(bodies_.size(), 0);
+  s.held = -1;
   return s;
 }
 
 ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& options) const {
   ProbeResult result;
   double best_depth = -std::numeric_limits<double>::infinity();
+  bool held_chosen = false;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const SceneBody& sb = bodies_[b];
     if (!sb.bounds.contains(q)) {
@@ -125,7 +127,9 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
     state.v[b] = foot.v;
     state.warm[b] = 1;
     auto c = contact::make_contact(sb.body, foot, q);
-    if (options.remember_side) {
+    if (sb.body.anchored()) {
+      c = contact::top_side_contact(c, q);  // only the top is touchable: no side to remember
+    } else if (options.remember_side) {
       if (!c.inside) {
         state.entry_side[b] = 0;
       } else if (state.entry_side[b] == 0) {
@@ -137,13 +141,17 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
         c.side = state.entry_side[b];
       }
     }
-    if (c.depth > best_depth) {
+    // The proxy keeps the body it touched while the probe is still inside it.
+    const bool held = options.remember_side && state.held == static_cast<int>(b) && c.inside;
+    if (held || (c.depth > best_depth && !held_chosen)) {
       best_depth = c.depth;
       result.nearest = static_cast<int>(b);
       result.contact = c;
+      held_chosen = held_chosen || held;
     }
   }
   if (result.nearest >= 0 && result.contact.inside) result.body = result.nearest;
+  state.held = result.body;
   if (result.body >= 0) {
     const SceneBody& sb = bodies_[static_cast<std::size_t>(result.body)];
     result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, options.force);

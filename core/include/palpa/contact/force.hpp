@@ -22,6 +22,11 @@ struct ForceOptions {
   bool shear = true;          ///< the four shear springs of section 3.4
   double shear_delta = 0.1;   ///< their offset in parameter space (docs/model.md: why 0.1)
   double max_force = 30.0;    ///< N: |F| is capped here (devices cap lower, per device)
+  /// N/m: the rigid support under a body with "support": "bottom" (chest wall, pelvis,
+  /// table), met once a press reaches the bottom contour. Stiff against tissue (100-300
+  /// N/m in the bundled cases) yet below what desktop devices render stably (1-3 N/mm):
+  /// docs/model.md, "Bodies on a support".
+  double support_stiffness = 2000.0;
   TumourFeel tumour{};
 };
 
@@ -30,10 +35,14 @@ struct Force {
   Vec3 normal = Vec3::Zero();  ///< the normal spring
   Vec3 shear = Vec3::Zero();   ///< the four shear springs
   Vec3 tumour = Vec3::Zero();  ///< the tumours' springs
+  Vec3 support = Vec3::Zero(); ///< the rigid support's wall (bodies on a support only)
 };
 
 /// The force on a probe at q in contact (zero when !contact.inside). `tumours` are the
-/// body's own. Allocation-free.
+/// body's own. For a body on a support pass the contact through top_side_contact first:
+/// the tissue is then compressed at most to its thickness 2R, any deeper press meets the
+/// support's wall spring, and no component of the force points into the support (along
+/// -N). Allocation-free.
 Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3& q,
                     std::span<const mat::Tumour> tumours, const ForceOptions& options = {});
 

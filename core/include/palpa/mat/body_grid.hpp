@@ -7,8 +7,16 @@
 
 namespace palpa::mat {
 
+/// What a body rests on (docs/model.md, "Bodies on a support"). A breast lies on the chest
+/// wall, a prostate on the pelvis, a skin patch on a table: their bottom contour rests on a
+/// rigid support that a finger can neither touch nor pass, so only the top contour is
+/// touchable. A free body (a test geometry, an organ held in the air) has two touchable sides.
+enum class Support { Free, Bottom };
+const char* to_string(Support support);
+
 struct BodyGrid {
   std::string id;
+  Support support = Support::Free;
   int rows = 0;  ///< points along u
   int cols = 0;  ///< points along v
   /// Skeleton points (m), row-major: point (i, j) at index i*cols + j.

@@ -40,6 +40,9 @@ class MatBody {
   static MatBody fit(const BodyGrid& grid, const FitOptions& options = {});
 
   const std::string& id() const { return id_; }
+  /// Support::Bottom: only the top contour can be touched (docs/model.md).
+  Support support() const { return support_; }
+  bool anchored() const { return support_ == Support::Bottom; }
   const spline::BSplineSurface& skeleton() const { return skeleton_; }
   const spline::BSplineSurface& top() const { return top_; }
   const spline::BSplineSurface& bottom() const { return bottom_; }
@@ -51,10 +54,11 @@ class MatBody {
   std::size_t memory_bytes() const;
 
  private:
-  MatBody(std::string id, std::vector<double> u, std::vector<double> v, spline::BSplineSurface skeleton,
+  MatBody(std::string id, Support support, std::vector<double> u, std::vector<double> v, spline::BSplineSurface skeleton,
           spline::BSplineSurface top, spline::BSplineSurface bottom);
 
   std::string id_;
+  Support support_ = Support::Free;
   std::vector<double> u_params_;
   std::vector<double> v_params_;
   spline::BSplineSurface skeleton_;

@@ -40,11 +40,15 @@ struct ProbeOptions {
   FootPointMethod method = FootPointMethod::Fast;
   int bisect_levels = 10;
   contact::ForceOptions force{};
-  /// Treat successive queries as one probe path and remember the side of the skeleton a
-  /// press entered from: a press that goes past the skeleton keeps being pushed back out
-  /// of the side it entered (depth R + |PQ|), instead of flipping to the far surface
-  /// (docs/model.md, "Pressing past the skeleton"). Off by default, so that unrelated
-  /// queries stay independent; the haptic engine and `palpa-cli probe --path` turn it on.
+  /// Treat successive queries as one probe path (a proxy, in the haptics sense: the contact
+  /// keeps the surface it entered through). A press into a free body that goes past the
+  /// skeleton keeps being pushed back out of the side it entered (depth R + |PQ|), instead
+  /// of flipping to the far surface (docs/model.md, "Pressing past the skeleton"); and a
+  /// probe in contact with a body stays with it while it is inside, even where another
+  /// body's penetration is deeper, until it leaves and touches again. Off by default, so
+  /// that unrelated queries stay independent; the haptic engine and `palpa-cli probe
+  /// --path` turn it on. Bodies on a support need no memory: their only touchable side is
+  /// the top (top_side_contact), whatever path brought the probe in.
   bool remember_side = false;
 };
 
@@ -53,6 +57,7 @@ struct ProbeState {
   std::vector<double> u, v;
   std::vector<char> warm;
   std::vector<signed char> entry_side;  ///< +1/-1 while a press is in the body, 0 otherwise
+  int held = -1;  ///< the body in contact at the last query of a path, -1 when none
 };
 
 struct ProbeResult {
