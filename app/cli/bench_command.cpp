@@ -52,6 +52,9 @@ Command add_bench_command(CLI::App& parent) {
                      "then run each scene paced at 1 kHz on the real-time thread this long (0: skip); default 2")
       ->check(CLI::Range(0.0, 3600.0));
   table1->add_flag("--load", t1->load, "keep every core busy with other threads during the paced runs");
+  table1->add_option("--display-span", t1->display_span,
+                     "m: knot spans of the drawn surfaces (display refinement); 0 draws the fitted nets; default 0.004")
+      ->check(CLI::Range(0.0, 1.0));
   return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv] {
             if (table1->parsed()) {
               if (!t1_csv->empty()) t1->csv = *t1_csv;

@@ -49,10 +49,11 @@ struct StepTimes {
   int contact_ticks;
 };
 
-StepTimes time_ticks(const scene::Scene& scene, const engine::Trajectory& tr, bool dynamics) {
+StepTimes time_ticks(const scene::Scene& scene, const engine::Trajectory& tr, bool dynamics, double display_span) {
   engine::ScriptedDevice device(tr);
   engine::EngineOptions options;
   options.dynamics = dynamics;
+  options.deform.display_span = display_span;
   engine::Engine eng(scene, device, options);
   const auto ticks = static_cast<int>(tr.duration() * 1000.0);
   std::vector<double> us;
@@ -80,9 +81,11 @@ struct PacedRun {
 };
 
 // The scene on the real-time loop at 1 kHz for `seconds`, the probe palpating as above.
-PacedRun paced_run(const scene::Scene& scene, const engine::Trajectory& tr, double seconds) {
+PacedRun paced_run(const scene::Scene& scene, const engine::Trajectory& tr, double seconds, double display_span) {
   engine::ScriptedDevice device(tr);
-  engine::Engine eng(scene, device);
+  engine::EngineOptions options;
+  options.deform.display_span = display_span;
+  engine::Engine eng(scene, device, options);
   auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
   auto& loop = *loop_owner;
   PacedRun run;
@@ -148,15 +151,16 @@ int run_bench_table1(const Table1Options& options) {
       memory += sb.body.memory_bytes() + static_cast<std::size_t>(sb.search.sample_count()) * (sizeof(double) * 5);
     }
     const auto tr = palpation(spec, options.seconds);
-    const auto dyn = time_ticks(scene, tr, true);
-    const auto nodyn = time_ticks(scene, tr, false);
+    const auto dyn = time_ticks(scene, tr, true, options.display_span);
+    const auto nodyn = time_ticks(scene, tr, false, options.display_span);
     // The highest rate the worst 1 % of ticks still fits (one core, nothing else to do).
     const double max_rate = 1e6 / std::max(dyn.p99_us, nodyn.p99_us);
     const double core_share = dyn.mean_us * 1000.0 / 1e6 * 100.0;  // at 1 kHz
     PacedRun paced;
     if (options.realtime_seconds > 0.0) {
       const CpuLoad load(options.load);
-      paced = paced_run(scene, palpation(spec, options.realtime_seconds + 1.0), options.realtime_seconds);
+      paced = paced_run(scene, palpation(spec, options.realtime_seconds + 1.0), options.realtime_seconds,
+                        options.display_span);
       if (spec.bodies == 1 && spec.mat_points == 49) std::printf("%s%s\n", paced.scheduling.c_str(), options.load ? "; all cores loaded by busy threads" : "");
     }
     std::printf("%6d %6d | %10.2f %9.1f | %10.2f %10.2f %10.2f %10.2f | %9.0f %8.2f%% | %g s, %g MB, %g/%g Hz\n",

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "palpa/engine/engine.hpp"
+
 namespace palpa::cli {
 
 struct Table1Options {
@@ -11,6 +13,7 @@ struct Table1Options {
   double seconds = 2.0;                      ///< simulated seconds of palpation per scene and mode
   double realtime_seconds = 2.0;             ///< then each scene paced at 1 kHz on the real-time loop (0: skip)
   bool load = false;                         ///< keep every other core busy during the paced runs
+  double display_span = engine::kDisplaySpan; ///< m, the drawn nets' refinement (0: the fitted nets)
 };
 
 int run_bench_table1(const Table1Options& options);

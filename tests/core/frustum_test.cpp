@@ -67,9 +67,10 @@ TEST(DisplayMeshesCulling, AnInvisibleBodyKeepsItsMeshAndCatchesUpWhenSeenAgain)
   palpa::engine::SceneSnapshot shot;
   shot.bodies.resize(2);
   for (std::size_t b = 0; b < 2; ++b) {
-    const auto& body = scene.body(b).body;
-    const auto& top = body.top().control();
-    const auto& bottom = body.bottom().control();
+    // The engine's drawn nets: the rest contours refined for display.
+    const auto net = palpa::deform::display_net(scene.body(b).body, palpa::engine::EngineOptions{}.deform);
+    const auto& top = net.top.control();
+    const auto& bottom = net.bottom.control();
     shot.bodies[b].version = 1;
     shot.bodies[b].top.assign(top.begin(), top.end());
     shot.bodies[b].bottom.assign(bottom.begin(), bottom.end());

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "palpa/deform/control_point_modification.hpp"
+#include "palpa/spline/knot_refinement.hpp"
 
 namespace palpa::deform {
 namespace {
@@ -19,16 +20,65 @@ constexpr int kBottom = 7;
 
 std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
+// How many pieces each non-empty knot span of one direction needs so that no piece is
+// longer than `span` on the top contour (chords over nine lines across), capped so the
+// direction keeps at most `max_points` control points.
+std::vector<int> pieces_for(const spline::BSplineSurface& top, bool along_u, double span, int max_points) {
+  const auto& knots = along_u ? top.knots_u() : top.knots_v();
+  const int existing = along_u ? top.rows() : top.cols();
+  std::vector<int> pieces;
+  std::vector<double> length;
+  std::array<double, 3> a{}, b{};
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    if (!(knots[k + 1] > knots[k])) continue;
+    double longest = 0.0;
+    for (int line = 0; line <= 8; ++line) {
+      const double w = line / 8.0;
+      along_u ? top.evaluate(knots[k], w, a) : top.evaluate(w, knots[k], a);
+      along_u ? top.evaluate(knots[k + 1], w, b) : top.evaluate(w, knots[k + 1], b);
+      longest = std::max(longest, std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]));
+    }
+    length.push_back(longest);
+    pieces.push_back(std::max(1, static_cast<int>(std::ceil(longest / span))));
+  }
+  // Over the cap: scale every span's pieces down alike (the longest spans keep the most).
+  int added = 0;
+  for (const int n : pieces) added += n - 1;
+  const int room = std::max(0, max_points - existing);
+  if (added > room && added > 0) {
+    const double scale = static_cast<double>(room) / added;
+    for (int& n : pieces) n = 1 + static_cast<int>(std::floor((n - 1) * scale));
+  }
+  return pieces;
+}
+
+spline::BSplineSurface refine_both(const spline::BSplineSurface& s, const std::vector<double>& in_u,
+                                   const std::vector<double>& in_v) {
+  return spline::refine_knots(spline::refine_knots(s, spline::Direction::U, in_u), spline::Direction::V, in_v);
+}
+
 }  // namespace
+
+DisplayNet display_net(const mat::MatBody& rest, const DeformOptions& options) {
+  if (!(options.display_span > 0.0)) return {rest.skeleton(), rest.top(), rest.bottom()};
+  const auto& top = rest.top();
+  const auto pu = pieces_for(top, true, options.display_span, options.max_display_points);
+  const auto pv = pieces_for(top, false, options.display_span, options.max_display_points);
+  const auto in_u = spline::split_spans(top.knots_u(), pu);
+  const auto in_v = spline::split_spans(top.knots_v(), pv);
+  return {refine_both(rest.skeleton(), in_u, in_v), refine_both(rest.top(), in_u, in_v),
+          refine_both(rest.bottom(), in_u, in_v)};
+}
 
 DeformedBody::DeformedBody(const mat::MatBody& rest, const DeformOptions& options)
     : rest_(&rest),
       options_(options),
-      skeleton_(rest.skeleton()),
-      top_(rest.top()),
-      bottom_(rest.bottom()),
-      rows_(rest.skeleton().rows()),
-      cols_(rest.skeleton().cols()) {
+      net_(display_net(rest, options)),
+      skeleton_(net_.skeleton),
+      top_(net_.top),
+      bottom_(net_.bottom),
+      rows_(net_.skeleton.rows()),
+      cols_(net_.skeleton.cols()) {
   const std::size_t n = idx(rows_ * cols_);
   x_.assign(n * kComponents, 0.0);
   v_.assign(n * kComponents, 0.0);
@@ -37,13 +87,15 @@ DeformedBody::DeformedBody(const mat::MatBody& rest, const DeformOptions& option
   m_.resize(n);
   steps_.resize(n);
   held_.assign(n, 0);
+  active_.reserve(n);  // never more than every point: activate() never reallocates
+  is_active_.assign(n, 0);
   // Each control point's spring, damper and mass: the material where that control point
   // acts most, i.e. the skeleton evaluated at its Greville parameters (the knot averages),
   // kept within the range of the authored values. The control points' own material
   // coefficients can overshoot far outside it (a single soft site among stiff ones gives
   // a negative one), which would leave a dent that never springs back. Every point keeps
   // at least 1 % of the body's largest stiffness so that it does return to rest.
-  const auto& sk = rest.skeleton();
+  const auto& sk = net_.skeleton;
   std::array<double, mat::kSkeletonChannels> lo{};
   std::array<double, mat::kSkeletonChannels> hi{};
   lo.fill(std::numeric_limits<double>::infinity());
@@ -79,9 +131,9 @@ void DeformedBody::write_back(std::size_t point) {
   const int i = static_cast<int>(point) / cols_;
   const int j = static_cast<int>(point) % cols_;
   const double* x = &x_[point * kComponents];
-  const auto rs = rest_->skeleton().control_point(i, j);
-  const auto rt = rest_->top().control_point(i, j);
-  const auto rb = rest_->bottom().control_point(i, j);
+  const auto rs = net_.skeleton.control_point(i, j);
+  const auto rt = net_.top.control_point(i, j);
+  const auto rb = net_.bottom.control_point(i, j);
   auto s = skeleton_.control_point(i, j);
   auto t = top_.control_point(i, j);
   auto b = bottom_.control_point(i, j);
@@ -107,10 +159,10 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   // Targets: displacements from rest at (u, v). The near contour lands exactly on the
   // probe; the skeleton takes g of the press and the radius the rest (scheme (b); scheme
   // (a) is g = 1); the far contour then moves by (1 - 2g) depth n (0 for g = 1/2).
-  const auto basis = rest_->skeleton().basis(u, v);
+  const auto basis = net_.skeleton.basis(u, v);
   const bool top_near = contact.side > 0;
   std::array<double, 3> rest_near{};
-  (top_near ? rest_->top() : rest_->bottom()).evaluate(basis, rest_near, 0, 3);
+  (top_near ? net_.top : net_.bottom).evaluate(basis, rest_near, 0, 3);
   std::array<double, kComponents> target{};
   for (std::size_t c = 0; c < 3; ++c) {
     target[kSkeletonXyz + c] = -g * depth * n[static_cast<Eigen::Index>(c)];
@@ -121,44 +173,47 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   }
   target[kRadius] = -(1.0 - g) * depth;
 
-  // What is displaced there now (the drawn minus the rest surfaces at (u, v)).
-  std::array<double, kComponents> now{};
-  std::array<double, 4> a{};
-  std::array<double, 4> r{};
-  skeleton_.evaluate(basis, a, 0, 4);
-  rest_->skeleton().evaluate(basis, r, 0, 4);
-  for (std::size_t c = 0; c < 4; ++c) now[c] = a[c] - r[c];
-  top_.evaluate(basis, a, 0, 3);
-  rest_->top().evaluate(basis, r, 0, 3);
-  for (std::size_t c = 0; c < 3; ++c) now[kTop + c] = a[c] - r[c];
-  bottom_.evaluate(basis, a, 0, 3);
-  rest_->bottom().evaluate(basis, r, 0, 3);
-  for (std::size_t c = 0; c < 3; ++c) now[kBottom + c] = a[c] - r[c];
-
-  // Least-norm change of the most influential control points (section 3.3): they are
-  // placed, not integrated, until the next press or release.
-  const auto inf = influence_at(rest_->skeleton(), u, v, options_.influence_u, options_.influence_v);
-  // Hold the whole (p+1) x (q+1) support of (u, v), not only the window that moves: a
-  // free point of the support would keep springing back and pull the surface off the probe.
+  // The press's support, the (p+1) x (q+1) control points under (u, v), takes the whole
+  // dent afresh every tick: those points are first put back at rest, then given the
+  // least-norm change that moves S(u, v) onto its target (section 3.3) over the influence
+  // window. So the dent is always centred on the finger, each point's share follows its
+  // basis function at the finger (a point the finger leaves goes out with a share near 0,
+  // nothing is left behind to trail), and no free point of the support pulls the surface
+  // off the probe (they are held: placed, not integrated, until the next press or release).
   std::fill(held_.begin(), held_.end(), 0);
-  const int p_deg = rest_->skeleton().degree_u();
-  const int q_deg = rest_->skeleton().degree_v();
+  const int p_deg = net_.skeleton.degree_u();
+  const int q_deg = net_.skeleton.degree_v();
   for (int i = basis.span_u - p_deg; i <= basis.span_u; ++i) {
     for (int j = basis.span_v - q_deg; j <= basis.span_v; ++j) {
       const std::size_t p = idx(i * cols_ + j);
       held_[p] = 1;
+      activate(p);
+      std::fill_n(&x_[p * kComponents], kComponents, 0.0);
       std::fill_n(&v_[p * kComponents], kComponents, 0.0);
+      write_back(p);
     }
   }
+
+  // What the rest of the net displaces there now (the drawn minus the rest surfaces at (u, v)).
+  std::array<double, kComponents> now{};
+  std::array<double, 4> a{};
+  std::array<double, 4> r{};
+  skeleton_.evaluate(basis, a, 0, 4);
+  net_.skeleton.evaluate(basis, r, 0, 4);
+  for (std::size_t c = 0; c < 4; ++c) now[c] = a[c] - r[c];
+  top_.evaluate(basis, a, 0, 3);
+  net_.top.evaluate(basis, r, 0, 3);
+  for (std::size_t c = 0; c < 3; ++c) now[kTop + c] = a[c] - r[c];
+  bottom_.evaluate(basis, a, 0, 3);
+  net_.bottom.evaluate(basis, r, 0, 3);
+  for (std::size_t c = 0; c < 3; ++c) now[kBottom + c] = a[c] - r[c];
+
+  const auto inf = influence_at(net_.skeleton, u, v, options_.influence_u, options_.influence_v);
   for (int ia = 0; ia < inf.rows; ++ia) {
     for (int jb = 0; jb < inf.cols; ++jb) {
       const std::size_t p = idx((inf.i0 + ia) * cols_ + inf.j0 + jb);
       const double w = inf.weight[idx(ia * inf.cols + jb)];
-      for (std::size_t c = 0; c < kComponents; ++c) {
-        x_[p * kComponents + c] += w * (target[c] - now[c]);
-        v_[p * kComponents + c] = 0.0;
-      }
-      held_[p] = 1;
+      for (std::size_t c = 0; c < kComponents; ++c) x_[p * kComponents + c] = w * (target[c] - now[c]);
       write_back(p);
     }
   }
@@ -171,12 +226,20 @@ void DeformedBody::release() {
   if (!options_.dynamics) {
     std::fill(x_.begin(), x_.end(), 0.0);
     std::fill(v_.begin(), v_.end(), 0.0);
-    skeleton_ = rest_->skeleton();  // same sizes: copies into the existing storage
-    top_ = rest_->top();
-    bottom_ = rest_->bottom();
+    skeleton_ = net_.skeleton;  // same sizes: copies into the existing storage
+    top_ = net_.top;
+    bottom_ = net_.bottom;
+    active_.clear();
+    std::fill(is_active_.begin(), is_active_.end(), 0);
     awake_ = false;
     ++version_;
   }
+}
+
+void DeformedBody::activate(std::size_t point) {
+  if (is_active_[point] != 0) return;
+  is_active_[point] = 1;
+  active_.push_back(static_cast<std::uint32_t>(point));  // within the reserved capacity
 }
 
 void DeformedBody::rebuild_steps(double dt) {
@@ -195,16 +258,18 @@ void DeformedBody::step(double dt) {
   bool moving = false;
   bool any_held = false;
   bool changed = false;
-  for (std::size_t p = 0; p < held_.size(); ++p) {
+  // Only the points a press displaced are visited (a refined net has thousands; a dent
+  // moves a few dozen), and a point leaves the list once it has settled.
+  std::size_t kept = 0;
+  for (std::size_t a = 0; a < active_.size(); ++a) {
+    const std::size_t p = active_[a];
     if (held_[p] != 0) {
       any_held = true;
+      active_[kept++] = static_cast<std::uint32_t>(p);
       continue;
     }
     double* x = &x_[p * kComponents];
     double* v = &v_[p * kComponents];
-    bool displaced = false;
-    for (int c = 0; c < kComponents; ++c) displaced = displaced || x[c] != 0.0 || v[c] != 0.0;
-    if (!displaced) continue;
     bool point_moving = false;
     for (int c = 0; c < kComponents; ++c) {
       steps_[p].apply(x[c], v[c]);
@@ -217,19 +282,25 @@ void DeformedBody::step(double dt) {
     if (!point_moving) {
       std::fill_n(x, kComponents, 0.0);
       std::fill_n(v, kComponents, 0.0);
+      is_active_[p] = 0;
+    } else {
+      active_[kept++] = static_cast<std::uint32_t>(p);
     }
     moving = moving || point_moving;
     changed = true;
     write_back(p);
   }
+  active_.resize(kept);  // shrinking never allocates
   if (changed) ++version_;  // a static hold changes nothing: nothing to re-tessellate
   if (!any_held && !moving) {
     // At rest within the thresholds: put it exactly at rest and stop integrating.
     std::fill(x_.begin(), x_.end(), 0.0);
     std::fill(v_.begin(), v_.end(), 0.0);
-    skeleton_ = rest_->skeleton();
-    top_ = rest_->top();
-    bottom_ = rest_->bottom();
+    skeleton_ = net_.skeleton;
+    top_ = net_.top;
+    bottom_ = net_.bottom;
+    active_.clear();
+    std::fill(is_active_.begin(), is_active_.end(), 0);
     awake_ = false;
   }
 }

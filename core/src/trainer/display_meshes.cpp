@@ -4,12 +4,13 @@
 
 namespace palpa::trainer {
 
-DisplayMeshes::DisplayMeshes(const scene::Scene& scene, const render::TessellationOptions& options)
+DisplayMeshes::DisplayMeshes(const scene::Scene& scene, const deform::DeformOptions& deform,
+                             const render::TessellationOptions& options)
     : options_(options) {
   bodies_.reserve(scene.size());
   for (std::size_t b = 0; b < scene.size(); ++b) {
-    const auto& rest = scene.body(b).body;
-    bodies_.push_back(Body{rest.top(), rest.bottom(), {}, {}, 0, true, true});
+    auto net = deform::display_net(scene.body(b).body, deform);
+    bodies_.push_back(Body{std::move(net.top), std::move(net.bottom), {}, {}, 0, true, true});
     render::tessellate(bodies_.back().top, options_, false, bodies_.back().top_mesh);
     render::tessellate(bodies_.back().bottom, options_, true, bodies_.back().bottom_mesh);
   }

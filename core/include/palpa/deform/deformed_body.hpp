@@ -26,7 +26,23 @@ struct DeformOptions {
   /// velocity below sleep_velocity (m/s); it is then put exactly at rest.
   double sleep_displacement = 1e-7;
   double sleep_velocity = 1e-5;
+  /// m: refine the drawn surfaces by knot insertion (The NURBS Book A5.4) until no knot
+  /// span is longer than this on the top contour, so that a press moves a patch the size
+  /// of a fingertip (a cubic's support is four spans: 4 mm spans give a 16 mm dent, a
+  /// fingertip pad is about 15 mm across) rather than a fifth of the body. 0 draws the
+  /// fitted control net as the paper does. The contact and force never see the refinement.
+  double display_span = 0.0;
+  /// At most this many control points per direction after refinement (memory and tick bound).
+  int max_display_points = 72;
 };
+
+/// The rest body's skeleton and contours as DeformedBody draws them: refined by knot
+/// insertion to DeformOptions::display_span (the same knots in all three), or copies of
+/// the fitted surfaces when display_span is 0. The same surfaces, evaluated at any (u, v).
+struct DisplayNet {
+  spline::BSplineSurface skeleton, top, bottom;
+};
+DisplayNet display_net(const mat::MatBody& rest, const DeformOptions& options);
 
 class DeformedBody {
  public:
@@ -34,6 +50,10 @@ class DeformedBody {
   explicit DeformedBody(const mat::MatBody& rest, const DeformOptions& options = {});
 
   const mat::MatBody& rest() const { return *rest_; }
+  /// The drawn surfaces at rest: the rest body's, refined for display (display_net).
+  const spline::BSplineSurface& rest_skeleton() const { return net_.skeleton; }
+  const spline::BSplineSurface& rest_top() const { return net_.top; }
+  const spline::BSplineSurface& rest_bottom() const { return net_.bottom; }
   const spline::BSplineSurface& skeleton() const { return skeleton_; }
   const spline::BSplineSurface& top() const { return top_; }
   const spline::BSplineSurface& bottom() const { return bottom_; }
@@ -62,15 +82,19 @@ class DeformedBody {
   static constexpr int kComponents = 10;  // SK x y z r, top x y z, bottom x y z
   void write_back(std::size_t point);
   void rebuild_steps(double dt);
+  void activate(std::size_t point);
 
   const mat::MatBody* rest_;
   DeformOptions options_;
+  DisplayNet net_;                     // the drawn surfaces at rest
   spline::BSplineSurface skeleton_, top_, bottom_;
   int rows_, cols_;
   std::vector<double> x_, v_;          // per control point, kComponents each: displacement, velocity
   std::vector<double> k_, b_, m_;      // per control point
   std::vector<OscillatorStep> steps_;  // per control point, for step_dt_
   std::vector<char> held_;             // pressed this tick: positioned, not integrated
+  std::vector<std::uint32_t> active_;  // points displaced or moving (capacity: all, never reallocates)
+  std::vector<char> is_active_;
   double step_dt_ = -1.0;
   bool awake_ = false;
   std::uint64_t version_ = 0;

@@ -14,12 +14,16 @@
 
 namespace palpa::engine {
 
+/// m: the drawn contours' knot spans in the engine (DeformOptions::display_span).
+inline constexpr double kDisplaySpan = 0.004;
+
 struct EngineOptions {
   double rate_hz = 1000.0;
   bool dynamics = true;  ///< the paper's Table 1 has columns with and without dynamics
   bool shear = true;
   scene::ProbeOptions probe{};  ///< foot-point method and force options (the entry side is always remembered)
-  deform::DeformOptions deform{};
+  /// The drawn bodies: refined for display so that a dent is fingertip-sized (display_span).
+  deform::DeformOptions deform{.display_span = kDisplaySpan};
   SafetyOptions safety{};
 };
 

@@ -13,8 +13,10 @@ namespace palpa::trainer {
 
 class DisplayMeshes {
  public:
-  /// Starts with every body at rest, tessellated. The scene must outlive this.
-  explicit DisplayMeshes(const scene::Scene& scene, const render::TessellationOptions& options = {});
+  /// Starts with every body at rest, tessellated. The scene must outlive this. `deform`
+  /// must be the engine's (its display refinement gives the drawn nets' sizes).
+  explicit DisplayMeshes(const scene::Scene& scene, const deform::DeformOptions& deform = engine::EngineOptions{}.deform,
+                         const render::TessellationOptions& options = {});
 
   /// Copies the control points of every visible body whose snapshot version differs from
   /// the last one taken and re-tessellates it; returns how many bodies changed (changed(b)
