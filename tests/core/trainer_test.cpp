@@ -78,6 +78,30 @@ TEST(TopContourPicker, HitsTheTopContourWhereTheProbeJustTouches) {
   EXPECT_FALSE(std::filesystem::exists("unused.palpa"));  // nothing written before start()
 }
 
+// The pointer on a grid line of the tessellation: a ray through the edge two triangles
+// share must hit one of them (strict barycentric tests rejected both through round-off,
+// and a trainee sliding along x = 0 saw the finger lift every few millimetres).
+TEST(TopContourPicker, RaysThroughSharedEdgesHit) {
+  const auto file = io::load_case(kDefaultCase);
+  LiveExercise live(file, kDefaultCase, options_for("unused.palpa"));
+  int rays = 0, missed = 0;
+  for (int i = -65; i <= 65; i += 5) {
+    for (int j = -75; j <= 75; ++j) {
+      const Vec3 plan(i * 1e-3, j * 1e-3, 0.0);
+      ++rays;
+      const auto down = live.pick(plan + Vec3(0, 0, 1.0), Vec3(0, 0, -1));
+      if (!down) {
+        ++missed;
+        continue;
+      }
+      // The same point seen from the front and above, as the window's camera looks.
+      const Vec3 eye = down->point + 0.5 * Vec3(0.0, -0.6, 0.8);
+      if (!live.pick(eye, down->point - eye)) ++missed;
+    }
+  }
+  EXPECT_EQ(missed, 0) << "of " << rays << " rays";
+}
+
 TEST(LiveExercise, PressingOverTheTumourPushesBackAndDeformsTheDrawnBody) {
   ScratchDir dir;
   const auto file = io::load_case(kDefaultCase);

@@ -12,16 +12,6 @@
 
 namespace palpa::trainer {
 
-const char* to_string(PressureLevel level) {
-  switch (level) {
-    case PressureLevel::Light: return "light";
-    case PressureLevel::Medium: return "medium";
-    case PressureLevel::Deep: return "deep";
-    case PressureLevel::None: break;
-  }
-  return "none";
-}
-
 namespace {
 
 score::Thresholds thresholds_of(const io::CaseFile& placed, const std::string& source) {
@@ -45,8 +35,9 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       fallback_(primary_.get(), device_, 2.0 * options.engine.safety.ramp_time),
       engine_(std::make_unique<engine::Engine>(*scene_, fallback_, options.engine)),
       loop_(std::make_unique<engine::RealtimeLoop>(*engine_, options.realtime)),
-      meshes_(*scene_, options.tessellation),
-      picker_(*scene_) {
+      meshes_(*scene_, options.engine.deform, options.tessellation),
+      picker_(*scene_),
+      follower_(*scene_) {
   if (options_.trainee.empty()) throw std::invalid_argument("trainee id must not be empty");
   // Start the probe well above the first body, so that the first ticks touch nothing.
   if (scene_->size() > 0) {
@@ -87,13 +78,35 @@ std::string LiveExercise::start() {
 void LiveExercise::set_probe_target(const Vec3& target) {
   // While a chosen device drives the probe the target waits; after a switch the virtual
   // device starts from the chosen device's last pose (handle_device_switch), then follows.
+  following_ = false;
   if (primary_ && !switch_seen_) return;
   device_.set_target(target);
 }
 
+void LiveExercise::aim(const std::optional<SurfacePick>& pick) {
+  follower_.aim(pick);
+  if (!following_) last_follow_ = std::chrono::steady_clock::now();
+  following_ = true;
+  follow();
+}
+
+void LiveExercise::follow() {
+  if (!following_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double dt = std::chrono::duration<double>(now - last_follow_).count();
+  last_follow_ = now;
+  const auto& s = loop_->snapshot();
+  const double felt = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
+  const auto target = follower_.advance(dt, felt);
+  if (!target || (primary_ && !switch_seen_)) return;
+  device_.set_target(*target);
+}
+
 bool LiveExercise::update() {
   handle_device_switch();
-  if (!loop_->update_snapshot()) return false;
+  const bool fresh = loop_->update_snapshot();
+  follow();
+  if (!fresh) return false;
   meshes_.update(loop_->snapshot());
   return true;
 }
@@ -110,9 +123,7 @@ ContactInfo LiveExercise::contact() const {
   scene_->body(static_cast<std::size_t>(s.body)).body.skeleton().evaluate(s.u, s.v, sk, 4);
   c.thickness = 2.0 * std::max(0.0, sk[3]);
   c.fraction = c.thickness > 0.0 ? c.depth / c.thickness : 1.0;
-  c.level = c.fraction < thresholds_.light_max ? PressureLevel::Light
-            : c.fraction >= thresholds_.deep_min ? PressureLevel::Deep
-                                                 : PressureLevel::Medium;
+  c.level = level_of(c.fraction, thresholds_);
   return c;
 }
 
@@ -217,6 +228,16 @@ void LiveExercise::pause(bool paused) {
 }
 
 score::Score LiveExercise::finish(const std::string& note) {
+  end(note);
+  const auto recorded = session::read_session(options_.session_path);
+  return score::score_session(recorded, options_.session_path.string());
+}
+
+void LiveExercise::abandon(const std::string& reason) {
+  end(std::string(session::kAbandonedNote) + ": " + reason);
+}
+
+void LiveExercise::end(const std::string& note) {
   if (!started_) throw std::logic_error("the exercise has not started");
   if (finished_) throw std::logic_error("the exercise has already finished");
   handle_device_switch();
@@ -234,8 +255,6 @@ score::Score LiveExercise::finish(const std::string& note) {
   recorder_->finish(t_end, end_note);
   const std::string error = recorder_->error();
   if (!error.empty()) throw session::SessionError(options_.session_path.string(), "recorder", error);
-  const auto recorded = session::read_session(options_.session_path);
-  return score::score_session(recorded, options_.session_path.string());
 }
 
 }  // namespace palpa::trainer

@@ -16,6 +16,8 @@ TopContourPicker::TopContourPicker(const scene::Scene& scene, double tolerance) 
 
 namespace {
 
+constexpr double kEdgeSlack = 1e-6;  // of a triangle's barycentric range: far below a pixel
+
 Vec3 vertex(const std::vector<float>& xyz, std::uint32_t index) {
   const std::size_t at = std::size_t{index} * 3;
   return {double{xyz[at]}, double{xyz[at + 1]}, double{xyz[at + 2]}};
@@ -41,11 +43,14 @@ std::optional<SurfacePick> TopContourPicker::pick(const Vec3& origin, const Vec3
       const double det = e1.dot(h);
       if (std::abs(det) < 1e-18) continue;
       const Vec3 s = origin - p0;
+      // Barycentric tests with a little slack: a ray through an edge two triangles share
+      // (the pointer on a grid line of the tessellation) is rejected by both strict tests
+      // through round-off, and the finger would lift in the middle of the body.
       const double a = s.dot(h) / det;
-      if (a < 0.0 || a > 1.0) continue;
+      if (a < -kEdgeSlack || a > 1.0 + kEdgeSlack) continue;
       const Vec3 q = s.cross(e1);
       const double c = d.dot(q) / det;
-      if (c < 0.0 || a + c > 1.0) continue;
+      if (c < -kEdgeSlack || a + c > 1.0 + kEdgeSlack) continue;
       const double distance = e2.dot(q) / det;
       if (distance <= 0.0 || distance >= nearest) continue;
       nearest = distance;

@@ -7,6 +7,7 @@
 //
 // Threads: every member function belongs to one thread (the GUI's); the haptic and writer
 // threads are started by start() and stopped by finish() or the destructor.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "palpa/session/session_recorder.hpp"
 #include "palpa/session/session_writer.hpp"
 #include "palpa/trainer/display_meshes.hpp"
+#include "palpa/trainer/press_control.hpp"
 #include "palpa/trainer/surface_pick.hpp"
 
 namespace palpa::trainer {
@@ -34,7 +36,10 @@ struct LiveOptions {
   std::string mode = "trainee";       ///< recorded in the session's extra metadata
   engine::EngineOptions engine{};
   engine::RealtimeOptions realtime{};
-  double device_settling = 0.03;      ///< s: how softly the virtual probe follows the pointer
+  /// s: how softly the virtual probe follows its target. The surface follower already limits
+  /// speeds and rates (press_control.hpp); this only smooths its 60 Hz steps. Slower, the
+  /// probe trails a fast slide by centimetres and overshoots where the slide turns.
+  double device_settling = 0.015;
   /// The device the trainee palpates with (device/: a SpaceMouse, a Falcon, a replay);
   /// null: the virtual device the pointer steers. Its workspace is placed over the first
   /// body (centre of its rest box, top) at `device_scale` scene metres per device metre.
@@ -46,10 +51,8 @@ struct LiveOptions {
   render::TessellationOptions tessellation{};
 };
 
-/// Pressure level by indentation over the local tissue thickness 2R, with the case's
-/// score::Thresholds (light below light_max, deep from deep_min): the levels the score uses.
-enum class PressureLevel : std::uint8_t { None, Light, Medium, Deep };
-const char* to_string(PressureLevel level);
+// PressureLevel (press_control.hpp): indentation over the local tissue thickness 2R, with
+// the case's score::Thresholds (light below light_max, deep from deep_min): the score's levels.
 
 struct ContactInfo {
   int body = -1;             ///< contacted body, -1 when none
@@ -83,8 +86,16 @@ class LiveExercise {
   bool finished() const { return finished_; }
 
   /// Where the probe should go (m); the virtual device follows it smoothly. Without effect
-  /// while a chosen device (LiveOptions::device) is in use.
+  /// while a chosen device (LiveOptions::device) is in use. Stops following the pointer
+  /// (aim) until the next aim().
   void set_probe_target(const Vec3& target);
+  /// The mouse's way: the pointer is over this pick of a top contour (or off the bodies).
+  /// update() then walks the finger along the surface to it at the pressure set with
+  /// set_pressure_share / set_force_target (press_control.hpp), lifting off the bodies.
+  void aim(const std::optional<SurfacePick>& pick);
+  void set_pressure_share(double share) { follower_.set_share(share); }
+  void set_force_target(double newtons) { follower_.set_force_target(newtons); }
+  const SurfaceFollower& follower() const { return follower_; }
   /// Takes the newest snapshot, if a new one arrived, and re-tessellates the bodies whose
   /// version changed (meshes().changed(b)); returns true when a new snapshot arrived. Also
   /// handles a device switch (device_switched()).
@@ -116,6 +127,11 @@ class LiveExercise {
   /// a second call throws std::logic_error. Throws session::SessionError if the file
   /// cannot be read back.
   score::Score finish(const std::string& note = "trainee finished");
+  /// The trainee gives the attempt up: stops like finish() and ends the session with an End
+  /// event "abandoned: REASON" (session::kAbandonedNote), so that reports call it abandoned
+  /// rather than failed and learning curves leave it out. Nothing is scored. Once only, and
+  /// not after finish(): throws std::logic_error.
+  void abandon(const std::string& reason);
 
   /// Loop statistics published by the haptic thread (GUI thread only).
   const engine::LoopStats& loop_stats() { return loop_->stats(); }
@@ -137,6 +153,8 @@ class LiveExercise {
   double not_before_last_event(double t) const;  ///< t, or the last event's t if that is later
   void record(const session::Event& event);
   void handle_device_switch();
+  void follow();  ///< advances the surface follower and steers the virtual device
+  void end(const std::string& note);  ///< stops the loop and records the End event
   void close_device_pause();
 
   LiveOptions options_;
@@ -153,6 +171,9 @@ class LiveExercise {
   std::unique_ptr<session::SessionRecorder> recorder_;
   DisplayMeshes meshes_;
   TopContourPicker picker_;
+  SurfaceFollower follower_;
+  bool following_ = false;                        // aim() drives the probe target
+  std::chrono::steady_clock::time_point last_follow_{};
   std::vector<LiveMark> marks_;
   std::int64_t next_mark_ = 1;
   mutable double last_event_t_ = 0.0;

@@ -1,0 +1,111 @@
+#pragma once
+// Pressure for a mouse (docs/user-guide.md, "How pressure works"). A mouse has no force:
+// the trainee chooses a pressure and the finger follows the surface under the pointer at
+// it. PressureDial is the choice in the trainee's terms (light, medium, deep: the score's
+// own bands, a share of the local tissue thickness, with three steps inside each band);
+// SurfaceFollower turns the pointer's pick and that share into the probe's target, walking
+// along the top contour (never a chord through the body), lifting off the body, and
+// never pressing past the support.
+#include <cstddef>
+#include <optional>
+
+#include "palpa/scene/scene.hpp"
+#include "palpa/score/thresholds.hpp"
+#include "palpa/trainer/surface_pick.hpp"
+
+namespace palpa::trainer {
+
+enum class PressureLevel : std::uint8_t { None, Light, Medium, Deep };
+const char* to_string(PressureLevel level);
+
+/// The level a press of `fraction` of the local thickness counts as (the score's bands).
+PressureLevel level_of(double fraction, const score::Thresholds& thresholds);
+
+/// Nine settings, three per level, from the lightest light to the deepest deep.
+class PressureDial {
+ public:
+  static constexpr int kStepsPerLevel = 3;
+  static constexpr int kSettings = 3 * kStepsPerLevel;
+  /// The deepest share it offers: the last quarter of the tissue is left to the support.
+  static constexpr double kMaxShare = 0.85;
+
+  explicit PressureDial(const score::Thresholds& thresholds, int index = 4);
+  int index() const { return index_; }
+  void set_index(int index);
+  void step(int delta) { set_index(index_ + delta); }
+  PressureLevel level() const;
+  /// 1 .. kStepsPerLevel within the level.
+  int step_in_level() const { return index_ % kStepsPerLevel + 1; }
+  /// The share of the local thickness this setting presses to: an eighth into the band,
+  /// its middle and an eighth before its end (light [0, light_max), medium [light_max,
+  /// deep_min), deep [deep_min, kMaxShare]).
+  double share() const;
+  /// The first setting of a level (Light, Medium or Deep), its middle step.
+  static int middle_of(PressureLevel level);
+
+ private:
+  score::Thresholds thresholds_;
+  int index_ = 4;
+};
+
+/// Where the top contour is over a skeleton point, as the contact measures it.
+struct SurfaceFrame {
+  Vec3 top = Vec3::Zero();       ///< m, SK(u,v) + R N: depth 0 of the contact
+  Vec3 normal = Vec3::UnitZ();   ///< unit skeleton normal N (out of the top)
+  double thickness = 0.0;        ///< m, 2R
+  double stiffness = 0.0;        ///< N/m, k(u,v)
+};
+SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v);
+
+struct FollowerOptions {
+  double lift = 0.015;       ///< m above the surface when the pointer is off the bodies
+  double max_speed = 0.40;   ///< m/s along the surface, pressing (a pointer jump becomes a fast slide)
+  double lifted_speed = 0.8; ///< m/s over the surface while lifted (the finger moves through the air)
+  double press_rate = 3.0;   ///< shares of the thickness per second, pressing in
+  double release_rate = 6.0; ///< shares of the thickness per second, easing off (a finger lets go faster)
+  double lift_rate = 8.0;    ///< lifts per second, rising off or coming down to the skin
+  double force_gain = 6.0;   ///< 1/s, force mode: share change per second per share of error
+};
+
+class SurfaceFollower {
+ public:
+  explicit SurfaceFollower(const scene::Scene& scene, const FollowerOptions& options = {});
+
+  /// The pointer is over a top contour at `pick`, or off every body (nullopt): lift there.
+  void aim(const std::optional<SurfacePick>& pick);
+  /// Level mode: press to this share of the local thickness (clamped to [0, kMaxShare]).
+  void set_share(double share);
+  /// Force mode: sink until |F| reaches `newtons` (over a stiff lump the finger sinks less);
+  /// 0 returns to level mode at the current share.
+  void set_force_target(double newtons);
+  double force_target() const { return force_target_; }
+
+  /// Advances dt seconds; `felt` is |F| now (force mode reads it). Returns the probe
+  /// target, or nothing before the first pick.
+  std::optional<Vec3> advance(double dt, double felt);
+
+  bool started() const { return started_; }
+  std::size_t body() const { return body_; }
+  double u() const { return u_; }
+  double v() const { return v_; }
+  /// The commanded press: a share of the thickness (>= 0), or a lift (-1 .. 0: -1 is the full lift).
+  double press() const { return press_; }
+  /// Whether the finger means to press (the pointer is on a body).
+  bool on_body() const { return aimed_on_body_; }
+
+ private:
+  void walk(double dt);
+  double desired_press(double dt, double felt);
+
+  const scene::Scene* scene_;
+  FollowerOptions options_;
+  bool started_ = false;
+  bool aimed_on_body_ = false;
+  std::size_t body_ = 0, aim_body_ = 0;
+  double u_ = 0.5, v_ = 0.5, aim_u_ = 0.5, aim_v_ = 0.5;
+  double press_ = -1.0;
+  double share_ = 0.35;
+  double force_target_ = 0.0;
+};
+
+}  // namespace palpa::trainer
