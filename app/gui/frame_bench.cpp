@@ -149,6 +149,7 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
     row.bodies_drawn = drawn / n;
     row.cpu_ms = cpu_used / n * 1e3;
   }
+  window.setProperty(ui::TraineeWindow::kCloseWithoutAsking, true);
   window.close();  // finishes the session; the file is only a by-product
   std::filesystem::remove(options.session_path);
   std::filesystem::remove(options.session_path.string() + "-wal");

@@ -10,6 +10,8 @@
 #include <QSocketNotifier>
 #include <QWidget>
 
+#include "palpa/ui/trainee_window.hpp"
+
 namespace palpa::gui {
 
 namespace {
@@ -31,7 +33,10 @@ void quit_on_signals() {
     while (::read(signal_pipe[0], &byte, 1) > 0) {
     }
     static bool asked = false;
-    QApplication::closeAllWindows();  // each window finishes its work in closeEvent
+    // Each window finishes its work in closeEvent; a running exercise ends complete without
+    // asking the trainee (nobody may be at the station to answer).
+    for (auto* w : QApplication::topLevelWidgets()) w->setProperty(ui::TraineeWindow::kCloseWithoutAsking, true);
+    QApplication::closeAllWindows();
     bool open = false;
     for (auto* w : QApplication::topLevelWidgets()) open = open || w->isVisible();
     if (!open || asked) {

@@ -400,6 +400,7 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(trainee->exercise().placed_case().tumours[0].center, window.draft().tumour(0)->center);
     QVERIFY(std::filesystem::exists(trainee->exercise().session_path()));
     QCOMPARE(QString::fromStdString(trainee->exercise().session_path().parent_path().string()), dir.filePath("sessions"));
+    trainee->setProperty(palpa::ui::TraineeWindow::kCloseWithoutAsking, true);  // no question to answer
     trainee->close();  // finishes the session; the window deletes itself
     QTRY_VERIFY(window.try_window() == nullptr);
   }
@@ -568,6 +569,7 @@ class InstructorWindowTest : public QObject {
     QVERIFY2(trainee != nullptr, qPrintable(window.message()));
     QCOMPARE(opened, 1);
     QCOMPARE(trainee->exercise().device_name(), std::string("Fake probe"));
+    trainee->setProperty(palpa::ui::TraineeWindow::kCloseWithoutAsking, true);
     trainee->close();
     QTRY_VERIFY(window.try_window() == nullptr);
 

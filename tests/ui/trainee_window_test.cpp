@@ -161,8 +161,11 @@ class TraineeWindowTest : public QObject {
     const QPoint at = window.to_view(top_over_tumour(window.exercise()));
     QVERIFY(view->rect().contains(at));
     move_pointer(view->input(), at);
-    wheel(view->input(), at, 6);  // 4 mm + 6 notches of 1 mm
-    QCOMPARE(window.press_depth(), 0.010);
+    QCOMPARE(window.pressure().level(), palpa::trainer::PressureLevel::Medium);  // medium 2 of 3 to start
+    wheel(view->input(), at, 2);  // two notches deeper: deep 1 of 3
+    QCOMPARE(window.pressure().level(), palpa::trainer::PressureLevel::Deep);
+    QCOMPARE(window.pressure().step_in_level(), 1);
+    QVERIFY2(window.pressure_text().contains("deep, step 1 of 3"), qPrintable(window.pressure_text()));
     QVERIFY2(wait_for([&] { return window.gauge()->contact().force > 1.0; }),
              qPrintable(window.gauge()->text()));
     QVERIFY(window.gauge()->contact().level != palpa::trainer::PressureLevel::None);

@@ -127,7 +127,9 @@ InstructorWindow::~InstructorWindow() {
   for (auto* child : findChildren<QObject*>()) child->disconnect(this);
   // Closed first, so that their sessions finish (a close accepted by closeEvent did it).
   for (auto& w : try_windows_) {
-    if (w) w->close();
+    if (!w) continue;
+    w->setProperty(TraineeWindow::kCloseWithoutAsking, true);  // the instructor closed the case
+    w->close();
     delete w.data();
   }
 }

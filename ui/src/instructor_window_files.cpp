@@ -159,7 +159,9 @@ void InstructorWindow::closeEvent(QCloseEvent* event) {
   if (confirm_discard()) {
     // Their closeEvent finishes the sessions (End event); they delete themselves.
     for (auto& w : try_windows_) {
-      if (w) w->close();
+      if (!w) continue;
+    w->setProperty(TraineeWindow::kCloseWithoutAsking, true);  // the instructor closed the case
+    w->close();
     }
     event->accept();
   } else {

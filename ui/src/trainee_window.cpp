@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include <QCheckBox>
 #include <QCloseEvent>
+#include <QMessageBox>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QKeyEvent>
@@ -38,9 +40,9 @@ namespace palpa::ui {
 namespace {
 
 constexpr double kFingertipRadius = 0.006;  // m: drawn probe
-constexpr double kMaxPressDepth = 0.040;    // m
-constexpr double kDepthStep = 0.001;        // m per wheel notch or key press
-constexpr double kLift = 0.015;             // m above the surface when the pointer leaves the body
+constexpr double kMinForceTarget = 1.0;     // N: force mode's range (a light touch to a firm
+constexpr double kMaxForceTarget = 15.0;    //    clinical press, below the 20 N safety gate)
+constexpr double kDefaultForceTarget = 6.0; // N
 
 vtkSmartPointer<vtkActor> sphere_actor(const trainer::Vec3& centre, double radius, double r, double g, double b) {
   vtkNew<vtkSphereSource> sphere;
@@ -74,7 +76,9 @@ vtkSmartPointer<vtkActor> line_actor(const trainer::Vec3& a, const trainer::Vec3
 
 TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start,
                              QWidget* parent)
-    : QMainWindow(parent), exercise_(std::move(exercise)) {
+    : QMainWindow(parent),
+      exercise_(std::move(exercise)),
+      dial_(exercise_->thresholds(), trainer::PressureDial::middle_of(trainer::PressureLevel::Medium)) {
   setWindowTitle(tr("Palpa: trainee exercise (%1)").arg(case_name));
   resize(1200, 760);
 
@@ -86,8 +90,10 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
   layout->addWidget(view_, 1);
 
   auto* side = new QVBoxLayout;
-  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body to palpate; the wheel "
-                             "or Up/Down sets how deep you press. <b>M</b> marks where the finger is.<br>"
+  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body: the finger slides "
+                             "over the skin, pressing at the pressure you choose. <b>Wheel</b> or <b>Up/Down</b>: "
+                             "lighter or deeper (light, medium, deep). Feel where the tissue pushes back harder "
+                             "at the same pressure, then press <b>M</b> to mark the finger's spot.<br>"
                              "Left drag turns the view, Ctrl+wheel zooms."),
                           central);
   help->setWordWrap(true);
@@ -100,8 +106,15 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
   const auto& th = exercise_->thresholds();
   gauge_ = new ForceGauge(th.light_max, th.deep_min, central);
   side->addWidget(gauge_);
-  depth_label_ = new QLabel(central);
-  side->addWidget(depth_label_);
+  pressure_label_ = new QLabel(central);
+  pressure_label_->setWordWrap(true);
+  side->addWidget(pressure_label_);
+  force_mode_ = new QCheckBox(tr("Press to a force instead (F)"), central);
+  force_mode_->setToolTip(tr("The finger sinks until it feels the chosen force (1-15 N): over a stiff lump it "
+                             "sinks less. The wheel then sets the force."));
+  side->addWidget(force_mode_);
+  connect(force_mode_, &QCheckBox::toggled, this,
+          [this](bool on) { set_force_mode(on ? (force_target_ > 0.0 ? force_target_ : kDefaultForceTarget) : 0.0); });
   auto* marks_box = new QGroupBox(tr("Marks"), central);
   auto* marks_layout = new QVBoxLayout(marks_box);
   marks_list_ = new QListWidget(marks_box);
@@ -131,8 +144,14 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
   connect(finish_button_, &QPushButton::clicked, this, &TraineeWindow::finish);
   connect(&timer_, &QTimer::timeout, this, &TraineeWindow::frame);
 
+  // Keys belong to the window, not to whichever panel widget was clicked last: the panel
+  // takes no keyboard focus, the window's centre does (M and Up/Down work at once).
+  for (auto* w : side_widget->findChildren<QWidget*>()) w->setFocusPolicy(Qt::NoFocus);
+  central->setFocusPolicy(Qt::StrongFocus);
+  central->setFocus();
+
   build_scene();
-  set_press_depth(press_depth_);
+  apply_pressure();
   if (start) {
     scheduling_ = exercise_->start();
   } else {
@@ -155,7 +174,9 @@ void TraineeWindow::build_scene() {
   renderer_ = add_body_renderer(*view_, render_window_);
 
   surfaces_ = std::make_unique<BodySurfaces>(exercise_->meshes(), renderer_);
-  frame_from_front(*renderer_, scene_bounds(exercise_->scene()));  // the bodies, not the probe
+  // From high enough (56 degrees) that the whole top contour of a dome is in view: a mouse
+  // can palpate only the skin it can point at (the far slope of the breast is 51 degrees steep).
+  frame_from_front(*renderer_, scene_bounds(exercise_->scene()), 1.5);  // the bodies, not the probe
 
   probe_ = sphere_actor(trainer::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
   // Opaque: one translucent actor makes VTK add its order-independent translucency passes
@@ -171,26 +192,45 @@ QPoint TraineeWindow::to_view(const trainer::Vec3& point) const {
 
 void TraineeWindow::palpate_at(const QPoint& pos) {
   const auto [near, far] = view_->pointer_ray(*renderer_, pos);
-  const auto hit = exercise_->pick(near, far - near);
-  if (hit) {
-    picked_ = hit;
-  } else if (picked_) {
-    picked_->distance = -1.0;  // off the body: lift where we were
+  picked_ = exercise_->pick(near, far - near);
+  exercise_->aim(picked_);  // off the bodies: the finger lifts where it was
+}
+
+void TraineeWindow::step_pressure(int steps) {
+  if (force_target_ > 0.0) {
+    force_target_ = std::clamp(force_target_ + steps, kMinForceTarget, kMaxForceTarget);
+  } else {
+    dial_.step(steps);
   }
-  update_target();
+  apply_pressure();
 }
 
-void TraineeWindow::update_target() {
-  if (!picked_) return;
-  const bool on_body = picked_->distance >= 0.0;
-  const trainer::Vec3 target = picked_->point + (on_body ? -press_depth_ : kLift) * picked_->normal;
-  exercise_->set_probe_target(target);
+void TraineeWindow::set_force_mode(double newtons) {
+  force_target_ = newtons > 0.0 ? std::clamp(newtons, kMinForceTarget, kMaxForceTarget) : 0.0;
+  if (force_mode_->isChecked() != (force_target_ > 0.0)) {
+    const QSignalBlocker quiet(force_mode_);
+    force_mode_->setChecked(force_target_ > 0.0);
+  }
+  apply_pressure();
 }
 
-void TraineeWindow::set_press_depth(double metres) {
-  press_depth_ = std::clamp(metres, 0.0, kMaxPressDepth);
-  depth_label_->setText(tr("Press depth: %1 mm (wheel or Up/Down)").arg(press_depth_ * 1e3, 0, 'f', 0));
-  update_target();
+QString TraineeWindow::pressure_text() const {
+  if (force_target_ > 0.0) {
+    return tr("Pressure: to %1 N (force mode)").arg(force_target_, 0, 'f', 0);
+  }
+  return tr("Pressure: %1, step %2 of %3")
+      .arg(trainer::to_string(dial_.level()))
+      .arg(dial_.step_in_level())
+      .arg(trainer::PressureDial::kStepsPerLevel);
+}
+
+void TraineeWindow::apply_pressure() {
+  if (force_target_ > 0.0) {
+    exercise_->set_force_target(force_target_);
+  } else {
+    exercise_->set_pressure_share(dial_.share());
+  }
+  pressure_label_->setText(pressure_text());
 }
 
 void TraineeWindow::place_mark() {
@@ -313,7 +353,7 @@ void TraineeWindow::frame() {
     t1 = Clock::now();
     last_frame_.bodies_changed = surfaces_->sync(exercise_->meshes());
     t2 = Clock::now();
-    const auto& s = exercise_->snapshot();
+      const auto& s = exercise_->snapshot();
     if (s.tick > 0) {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
       const trainer::Vec3 n = picked_ ? picked_->normal : trainer::Vec3::UnitZ();
@@ -362,6 +402,20 @@ void TraineeWindow::update_status() {
   status_loop_->setToolTip(QString::fromStdString(scheduling_));
 }
 
+bool TraineeWindow::handle_key(int key) {
+  switch (key) {
+    case Qt::Key_M: place_mark(); return true;
+    case Qt::Key_Up: step_pressure(1); return true;
+    case Qt::Key_Down: step_pressure(-1); return true;
+    case Qt::Key_F: set_force_mode(force_target_ > 0.0 ? 0.0 : kDefaultForceTarget); return true;
+    default: return false;
+  }
+}
+
+void TraineeWindow::keyPressEvent(QKeyEvent* event) {
+  if (!handle_key(event->key())) QMainWindow::keyPressEvent(event);
+}
+
 bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
   if (watched != view_->input()) return QMainWindow::eventFilter(watched, event);
   switch (event->type()) {
@@ -373,31 +427,67 @@ bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
     case QEvent::Wheel: {
       auto* e = static_cast<QWheelEvent*>(event);
       if (e->modifiers() & Qt::ControlModifier) return false;  // VTK zooms
-      set_press_depth(press_depth_ + kDepthStep * e->angleDelta().y() / 120.0);
+      wheel_rest_ += e->angleDelta().y();
+      const int notches = wheel_rest_ / 120;  // a notch is 120; touchpads send less at a time
+      wheel_rest_ -= notches * 120;
+      if (notches != 0) step_pressure(notches);
       return true;
     }
-    case QEvent::KeyPress: {
-      auto* e = static_cast<QKeyEvent*>(event);
-      if (e->key() == Qt::Key_M) place_mark();
-      if (e->key() == Qt::Key_Up) set_press_depth(press_depth_ + kDepthStep);
-      if (e->key() == Qt::Key_Down) set_press_depth(press_depth_ - kDepthStep);
+    case QEvent::KeyPress:
+      handle_key(static_cast<QKeyEvent*>(event)->key());
       return true;  // no VTK key bindings (its 'q' and 'e' would end the application)
-    }
     default:
       return false;
   }
 }
 
 void TraineeWindow::closeEvent(QCloseEvent* event) {
-  timer_.stop();
   if (exercise_->started() && !exercise_->finished()) {
-    try {
-      exercise_->finish("window closed before finishing");  // the session ends complete, unscored here
-    } catch (const std::exception&) {
-      // The file keeps what was committed; nothing more to do on the way out.
+    // A signal or the application quitting closes without a question: the attempt ends
+    // complete and unscored here (AppWindows marks the windows it closes that way).
+    const bool ask = !property(kCloseWithoutAsking).toBool();
+    switch (ask ? ask_before_closing() : CloseChoice::Finish) {
+      case CloseChoice::GoOn:
+        event->ignore();
+        return;
+      case CloseChoice::FinishAndScore:
+        finish();  // the score card opens; the window stays to show the tumours
+        event->ignore();
+        return;
+      case CloseChoice::Abandon:
+        try {
+          exercise_->abandon("the trainee closed the window");
+        } catch (const std::exception&) {
+          // The file keeps what was committed; nothing more to do on the way out.
+        }
+        break;
+      case CloseChoice::Finish:
+        try {
+          exercise_->finish("window closed before finishing");  // the session ends complete, unscored here
+        } catch (const std::exception&) {
+        }
+        break;
     }
   }
+  timer_.stop();
   QMainWindow::closeEvent(event);
+}
+
+TraineeWindow::CloseChoice TraineeWindow::ask_before_closing() {
+  QMessageBox box(QMessageBox::Question, tr("The exercise is still running"),
+                  tr("Finish and score this attempt, abandon it (it is kept, marked as abandoned, and does not "
+                     "count as an exam), or go on palpating?"),
+                  QMessageBox::NoButton, this);
+  box.setObjectName("closeQuestion");
+  auto* finish = box.addButton(tr("Finish and score"), QMessageBox::AcceptRole);
+  auto* abandon = box.addButton(tr("Abandon"), QMessageBox::DestructiveRole);
+  auto* go_on = box.addButton(tr("Go on"), QMessageBox::RejectRole);
+  box.setDefaultButton(go_on);
+  box.setEscapeButton(go_on);
+  box.exec();
+  if (box.clickedButton() == finish) return CloseChoice::FinishAndScore;
+  if (box.clickedButton() == abandon) return CloseChoice::Abandon;
+  return CloseChoice::GoOn;
 }
 
 }  // namespace palpa::ui

@@ -1,6 +1,8 @@
 #pragma once
 // The force gauge: how deep the trainee presses as a share of the local tissue thickness,
 // over the light / medium / deep bands the score uses, with the force in newtons.
+#include <QRectF>
+#include <QStringList>
 #include <QWidget>
 
 #include "palpa/trainer/live_exercise.hpp"
@@ -14,9 +16,18 @@ class ForceGauge : public QWidget {
   ForceGauge(double light_max, double deep_min, QWidget* parent = nullptr);
   void set_contact(const trainer::ContactInfo& contact);
   const trainer::ContactInfo& contact() const { return contact_; }
-  /// The text under the bar, e.g. "7.4 N  medium  (32 % of 41 mm)".
+  /// The two lines under the bar, e.g. "7.4 N  medium" and "depth 13.1 mm (32 % of 41 mm)".
+  QStringList lines() const;
+  /// Both lines in one, for messages and tests.
   QString text() const;
-  QSize sizeHint() const override { return {260, 64}; }
+  /// Where paintEvent draws the band names and the two lines (widget pixels): they never
+  /// overlap, and each text is elided to its box at any width.
+  struct Layout {
+    QRectF bar, force_line, depth_line;
+  };
+  Layout layout() const;
+  QSize sizeHint() const override;
+  QSize minimumSizeHint() const override;
 
  protected:
   void paintEvent(QPaintEvent* event) override;

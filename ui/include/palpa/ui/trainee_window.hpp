@@ -4,8 +4,10 @@
 // status bar with the haptic loop's health. Everything it shows comes from
 // trainer::LiveExercise; everything the trainee does goes to it.
 //
-// Mouse: the pointer picks a point on the body; the wheel (or Up/Down) sets how deep to
-// press there. Left drag turns the view, Ctrl+wheel zooms. M marks the probe position.
+// Mouse: the pointer picks a point on the body and the finger follows the skin there at
+// the chosen pressure; the wheel (or Up/Down) steps the pressure through light, medium and
+// deep (three steps each), or in force mode the target force. Left drag turns the view,
+// Ctrl+wheel zooms. M marks the finger's position. Keys work while the window is active.
 #include <QElapsedTimer>
 #include <QMainWindow>
 #include <QPoint>
@@ -19,6 +21,7 @@
 #include "palpa/trainer/live_exercise.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
+class QCheckBox;
 class QLabel;
 class QListWidget;
 class QPushButton;
@@ -36,6 +39,9 @@ class ScoreCard;
 class TraineeWindow : public QMainWindow {
   Q_OBJECT
  public:
+  /// A dynamic property: set it true on the window before closing it to close without the
+  /// question (a signal, the application quitting); the attempt then ends complete.
+  static constexpr const char* kCloseWithoutAsking = "palpaCloseWithoutAsking";
   /// Takes the exercise; starts it (session recording, haptic loop) unless `start` is false
   /// (a screenshot needs no session). Throws what LiveExercise::start throws.
   TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start = true,
@@ -51,8 +57,12 @@ class TraineeWindow : public QMainWindow {
   vtkRenderer* renderer() const { return renderer_; }
   /// Where a scene point (m) appears in the view (widget pixels).
   QPoint to_view(const trainer::Vec3& point) const;
-  /// The current press depth (m) set by the wheel or the keys.
-  double press_depth() const { return press_depth_; }
+  /// The pressure chosen with the wheel or the keys (level mode).
+  const trainer::PressureDial& pressure() const { return dial_; }
+  /// Force mode: the finger sinks until |F| reaches this (N); 0 in level mode.
+  double force_target() const { return force_target_; }
+  /// The line under the gauge that names the chosen pressure, e.g. "Pressure: medium, step 2 of 3".
+  QString pressure_text() const;
   /// The score card, once finished.
   ScoreCard* score_card() const { return score_card_; }
   const std::optional<score::Score>& score() const { return score_; }
@@ -79,7 +89,10 @@ class TraineeWindow : public QMainWindow {
  public slots:
   /// The pointer is at `pos` (view pixels): pick the body there and press at the depth set.
   void palpate_at(const QPoint& pos);
-  void set_press_depth(double metres);
+  /// Steps the pressure (level mode: one of nine settings; force mode: 1 N).
+  void step_pressure(int steps);
+  /// Force mode on with a target in [1, 15] N, or off (level mode) with 0.
+  void set_force_mode(double newtons);
   void place_mark();
   void remove_selected_mark();
   void finish();
@@ -88,13 +101,18 @@ class TraineeWindow : public QMainWindow {
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
   void closeEvent(QCloseEvent* event) override;
 
  private:
   void build_scene();
   void update_status();
   void reveal(const score::Score& score);
-  void update_target();
+  enum class CloseChoice { FinishAndScore, Abandon, GoOn, Finish };
+  /// The question on closing a running exercise (objectName "closeQuestion").
+  CloseChoice ask_before_closing();
+  bool handle_key(int key);
+  void apply_pressure();
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
   /// box grown by a margin for deformation); returns how many are visible.
   std::size_t cull_bodies();
@@ -102,7 +120,6 @@ class TraineeWindow : public QMainWindow {
   std::unique_ptr<trainer::LiveExercise> exercise_;
   VtkView* view_ = nullptr;
   ForceGauge* gauge_ = nullptr;
-  QLabel* depth_label_ = nullptr;
   QLabel* device_banner_ = nullptr;  ///< shown once the chosen device faulted (unplugged)
   QListWidget* marks_list_ = nullptr;
   QPushButton* remove_button_ = nullptr;
@@ -120,7 +137,11 @@ class TraineeWindow : public QMainWindow {
   int frames_ = 0;
   double frame_rate_ = 0.0;
   FrameTimes last_frame_;
-  double press_depth_ = 0.004;  // m
+  trainer::PressureDial dial_;
+  double force_target_ = 0.0;  // N; 0: level mode
+  int wheel_rest_ = 0;         // wheel angle not yet a whole notch
+  QLabel* pressure_label_ = nullptr;
+  QCheckBox* force_mode_ = nullptr;
   std::optional<trainer::SurfacePick> picked_;
   std::optional<score::Score> score_;
   std::string scheduling_;
