@@ -19,6 +19,20 @@ if(PALPA_SANITIZE)
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
 
+# Acceptance: palpation through the window's own input events, checked against fresh
+# presses, and a mouse trainee that must pass the default case (long form: PALPA_LONG_TESTS=1).
+add_executable(ui_acceptance_tests ui/palpation_acceptance_test.cpp)
+set_target_properties(ui_acceptance_tests PROPERTIES AUTOMOC ON)
+target_link_libraries(ui_acceptance_tests PRIVATE palpa_ui Qt5::Test)
+target_compile_definitions(ui_acceptance_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+vtk_module_autoinit(TARGETS ui_acceptance_tests MODULES ${VTK_LIBRARIES})
+palpa_warnings(ui_acceptance_tests)
+add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>)
+if(PALPA_SANITIZE)
+  set_tests_properties(ui.acceptance PROPERTIES ENVIRONMENT
+                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+endif()
+
 # Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).
 add_executable(ui_review_tests ui/review_window_test.cpp)
 set_target_properties(ui_review_tests PROPERTIES AUTOMOC ON)

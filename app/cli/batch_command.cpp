@@ -38,6 +38,8 @@ struct BatchOptions {
   std::string out;
   int jobs = 0;  ///< 0: all cores
   bool reports = false;
+  bool include_abandoned = false;  ///< learning curves: also the attempts a trainee abandoned
+  bool all_modes = false;          ///< learning curves: every mode, not trainee exercises only
 };
 
 struct Input {
@@ -232,16 +234,24 @@ int run_batch(const BatchOptions& o) {
     for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
     report::write_text(out / "errors.csv", errors);
 
+    // Learning curves follow a trainee's exams: by default trainee exercises only, and no
+    // attempt the trainee abandoned (summary.csv still lists every session).
+    std::vector<const Scored*> attempts;
+    for (const auto& s : scored) {
+      if (s.score.abandoned && !o.include_abandoned) continue;
+      if (s.header.mode != "trainee" && !o.all_modes) continue;
+      attempts.push_back(&s);
+    }
     std::vector<report::TraineeCurve> curves;
-    for (std::size_t begin = 0; begin < scored.size();) {
+    for (std::size_t begin = 0; begin < attempts.size();) {
       std::size_t end = begin;
       report::TraineeCurve curve;
-      curve.trainee = scored[begin].header.trainee;
+      curve.trainee = attempts[begin]->header.trainee;
       curve.file_stem = report::trainee_file_stem(curve.trainee);
       std::vector<bool> passed;
-      for (; end < scored.size() && scored[end].header.trainee == curve.trainee; ++end) {
-        curve.attempts.push_back(report::attempt_of(scored[end].header, scored[end].score));
-        passed.push_back(scored[end].score.passed);
+      for (; end < attempts.size() && attempts[end]->header.trainee == curve.trainee; ++end) {
+        curve.attempts.push_back(report::attempt_of(attempts[end]->header, attempts[end]->score));
+        passed.push_back(attempts[end]->score.passed);
       }
       curve.cusum = report::failure_cusum(passed);
       report::write_text(out / "trainees" / (curve.file_stem + ".csv"), report::trainee_csv(curve.attempts, curve.cusum));
@@ -283,6 +293,11 @@ Command add_batch_command(CLI::App& parent) {
   app->add_option("--out", o->out, "output folder (created if needed)")->required();
   app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(CLI::Range(1, 1024));
   app->add_flag("--reports", o->reports, "also write DIR/sessions/STEM.html, STEM.json and STEM.xapi.json per session");
+  app->add_flag("--include-abandoned", o->include_abandoned,
+                "learning curves also count attempts the trainee abandoned (summary.csv always lists them)");
+  app->add_flag("--all-modes", o->all_modes,
+                "learning curves count every session (scripted, replays, instructors' Try it), not trainee "
+                "exercises only");
   return {app, [o] { return run_batch(*o); }};
 }
 

@@ -49,6 +49,7 @@ int run_replay_exercise(const std::string& session_path, const std::string& trai
   info.software_version = palpa::kVersion;
   info.started_at = exercise::iso8601_utc_now();
   info.extra["replayed_from"] = session_path;
+  info.extra["mode"] = "replay";
   info.extra["replayed_session_id"] = recorded.info.id;
 
   engine::EngineOptions options;

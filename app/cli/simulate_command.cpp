@@ -155,7 +155,7 @@ int run_simulate(const SimulateOptions& o) {
     info.rate_hz = o.rate;
     info.case_source = o.case_path;
     info.case_document = io::to_json(case_file);
-    info.extra = {{"recorded_by", "palpa-cli simulate"}};
+    info.extra = {{"recorded_by", "palpa-cli simulate"}, {"mode", "simulated"}};
     if (o.device.empty()) {
       info.extra["trajectory"] = o.trajectory_path;
     } else {

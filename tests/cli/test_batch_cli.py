@@ -13,6 +13,7 @@ import csv
 import json
 import os
 import shutil
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -25,7 +26,7 @@ TIMEOUT = 300
 SESSIONS = None
 HEADER = ("file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
           "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
-          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples")
+          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id")
 
 
 def run(args, timeout=TIMEOUT):
@@ -165,6 +166,64 @@ class Batch(unittest.TestCase):
         res = self.batch(os.path.join(SESSIONS, "alice-0.palpa"), "--out", os.path.join(blocker, "out"))
         self.assertEqual(res.returncode, 1, res.stderr)
         self.assertIn("palpa-cli: error: ", res.stderr)
+
+    def lifecycle_copy(self, name, session_id, trainee, started_at, mode, end_note=None):
+        """alice-1 (a pass) copied with another id, trainee, start, mode and End note."""
+        path = os.path.join(self.tmp.name, "in", name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        shutil.copy(os.path.join(SESSIONS, "alice-1.palpa"), path)
+        db = sqlite3.connect(path)
+        for key, value in (("id", session_id), ("trainee", trainee), ("started_at", started_at),
+                           ("extra", json.dumps({"mode": mode}))):
+            db.execute("update meta set value = ? where key = ?", (value, key))
+        if end_note is not None:
+            db.execute("update events set note = ? where kind = 'end'", (end_note,))
+        db.commit()
+        db.close()
+        return path
+
+    def test_abandoned_and_try_it_sessions_are_told_apart(self):
+        # alice: three trainee exercises, then one she abandoned; carol: an instructor's Try it.
+        for name in ("alice-0.palpa", "alice-1.palpa"):
+            shutil.copy(os.path.join(SESSIONS, name), os.path.join(self.tmp.name, name))
+        inputs = [os.path.join(self.tmp.name, "alice-0.palpa"), os.path.join(self.tmp.name, "alice-1.palpa")]
+        inputs.append(self.lifecycle_copy("alice-3.palpa", "a3a3a3a3a3a3a3a3", "alice", "2026-11-22T08:00:00Z",
+                                          "trainee", "abandoned: the trainee closed the window"))
+        inputs.append(self.lifecycle_copy("carol-1.palpa", "c1c1c1c1c1c1c1c1", "carol", "2026-11-22T09:00:00Z",
+                                          "instructor-try"))
+        out = os.path.join(self.tmp.name, "out")
+        res = self.batch(*inputs, "--out", out)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = {r["session_id"]: r for r in read_csv(os.path.join(out, "summary.csv"))}
+        self.assertEqual(len(rows), 4)
+        self.assertEqual(rows["a3a3a3a3a3a3a3a3"]["outcome"], "abandoned")
+        self.assertEqual(rows["a3a3a3a3a3a3a3a3"]["passed"], "0")
+        self.assertEqual(rows["a1a1a1a1a1a1a1a1"]["outcome"], "passed")
+        self.assertEqual(rows["a0a0a0a0a0a0a0a0"]["outcome"], "failed")
+        self.assertEqual(rows["c1c1c1c1c1c1c1c1"]["mode"], "instructor-try")
+        self.assertEqual(rows["a1a1a1a1a1a1a1a1"]["mode"], "trainee")
+        for r in rows.values():
+            self.assertEqual(r["case_file"], "flat-5x5.json")
+            self.assertTrue(r["case_id"].startswith("urn:palpa:case:"), r["case_id"])
+        # Learning curves: trainee exercises only, the abandoned attempt left out.
+        alice = read_csv(os.path.join(out, "trainees", "alice.csv"))
+        self.assertEqual([r["session_id"] for r in alice], ["a0a0a0a0a0a0a0a0", "a1a1a1a1a1a1a1a1"])
+        self.assertFalse(os.path.exists(os.path.join(out, "trainees", "carol.csv")))
+        # On request they count too.
+        out2 = os.path.join(self.tmp.name, "out2")
+        res = self.batch(*inputs, "--out", out2, "--include-abandoned", "--all-modes")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        alice = read_csv(os.path.join(out2, "trainees", "alice.csv"))
+        self.assertEqual(len(alice), 3)
+        self.assertEqual(len(read_csv(os.path.join(out2, "trainees", "carol.csv"))), 1)
+        # palpa-cli score says so too, and it is not a failed exam.
+        res = run(["score", inputs[2], "--json"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        j = json.loads(res.stdout)
+        self.assertTrue(j["abandoned"])
+        self.assertFalse(j["passed"])
+        res = run(["score", inputs[2]])
+        self.assertIn("ABANDONED", res.stdout)
 
     def test_help_and_usage(self):
         res = run(["batch", "--help"])

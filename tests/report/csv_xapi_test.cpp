@@ -39,7 +39,8 @@ TEST(SummaryCsv, HeaderIsTheDocumentedContract) {
   EXPECT_EQ(csv_header(),
             "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
             "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
-            "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples");
+            "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
+            "outcome,mode,case_file,case_id");
 }
 
 TEST(SummaryCsv, RowValuesLineUpWithTheHeader) {

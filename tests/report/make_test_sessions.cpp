@@ -77,6 +77,7 @@ palpa::session::Session make(const nlohmann::json& case_document, const std::str
   s.info.rate_hz = kRate;
   s.info.case_source = "data/cases/flat-5x5.json";
   s.info.case_document = case_document;
+  s.info.extra = {{"mode", "trainee"}};  // trainee exercises: they make learning curves
   return s;
 }
 

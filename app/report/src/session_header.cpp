@@ -16,6 +16,9 @@ SessionHeader header_of(const session::SessionInfo& info, const std::filesystem:
   h.software_version = info.software_version;
   h.started_at = info.started_at;
   h.file = file.string();
+  h.mode = session::session_mode(info);
+  h.case_file = std::filesystem::path(info.case_source).filename().string();
+  h.case_id = case_activity_id(h);
   return h;
 }
 
@@ -27,7 +30,10 @@ nlohmann::json to_json(const SessionHeader& h) {
           {"device", h.device},
           {"software_version", h.software_version},
           {"started_at", h.started_at},
-          {"file", h.file}};
+          {"file", h.file},
+          {"mode", h.mode},
+          {"case_file", h.case_file},
+          {"case_id", h.case_id}};
 }
 
 std::string slug(std::string_view text) {

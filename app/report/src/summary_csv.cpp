@@ -10,7 +10,8 @@ const std::string& csv_header() {
   static const std::string kHeader =
       "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
       "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
-      "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples";
+      "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
+      "outcome,mode,case_file,case_id";
   return kHeader;
 }
 
@@ -19,6 +20,12 @@ double mean_localization_error_mm(const score::Score& score) {
   double sum = 0.0;
   for (const double e : score.localization_error_mm) sum += e;
   return sum / static_cast<double>(score.localization_error_mm.size());
+}
+
+const char* outcome_of(const score::Score& s) {
+  if (s.abandoned) return "abandoned";
+  if (!s.complete) return "incomplete";
+  return s.passed ? "passed" : "failed";
 }
 
 std::string csv_row(const SessionHeader& h, const score::Score& s) {
@@ -62,6 +69,14 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   flag(s.complete);
   row += ',';
   row += std::to_string(s.samples);
+  row += ',';
+  row += outcome_of(s);
+  row += ',';
+  row += csv_field(h.mode);
+  row += ',';
+  row += csv_field(h.case_file);
+  row += ',';
+  row += csv_field(h.case_id);
   return row;
 }
 

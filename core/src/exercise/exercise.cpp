@@ -57,6 +57,7 @@ session::SessionInfo exercise_session_info(const io::CaseFile& placed, const std
   info.seed = seed;
   info.extra = nlohmann::json::object();
   info.extra["exercise_style"] = std::string(to_string(style));
+  info.extra["mode"] = "scripted";
   return info;
 }
 

@@ -126,6 +126,7 @@ Score score_session(const session::Session& session, const std::string& source, 
   Score out;
   out.thresholds = th;
   out.complete = session.complete;
+  out.abandoned = session::is_abandoned(session);
   out.samples = session.samples.size();
 
   // Coverage grids, one per body, restricted to the exam region.
@@ -390,6 +391,10 @@ Score score_session(const session::Session& session, const std::string& source, 
   }
 
   // Notes for the trainee and the instructor.
+  if (out.abandoned) {
+    out.passed = false;
+    out.notes.push_back("abandoned by the trainee: not an exam, left out of learning curves");
+  }
   if (!session.complete) {
     out.notes.push_back(printf_text("session incomplete (no end event): scored up to t = %.1f s",
                                     samples.empty() ? tl.end : samples.back().t));

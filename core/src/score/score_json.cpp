@@ -73,6 +73,7 @@ nlohmann::json to_json(const Score& s, bool with_maps) {
   out["thresholds"] = to_json(s.thresholds);
   out["exam_region"] = region_json(s.thresholds);
   out["complete"] = s.complete;
+  out["abandoned"] = s.abandoned;
   out["samples"] = s.samples;
   if (with_maps) {
     json maps = json::array();
@@ -93,7 +94,7 @@ nlohmann::json to_json(const Score& s, bool with_maps) {
 
 std::string summary_text(const Score& s) {
   std::string out;
-  out += s.passed ? "PASSED" : "NOT PASSED";
+  out += s.abandoned ? "ABANDONED (not an exam)" : s.passed ? "PASSED" : "NOT PASSED";
   out += line("  score %.0f / 100\n", 100.0 * s.score);
   int found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;

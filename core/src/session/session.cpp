@@ -58,4 +58,22 @@ SessionError::SessionError(std::string file, std::string where, std::string reas
       where_(std::move(where)),
       reason_(std::move(reason)) {}
 
+bool is_abandoned(const Session& session) {
+  for (const auto& e : session.events) {
+    if (e.kind == EventKind::End) return e.note.rfind(kAbandonedNote, 0) == 0;
+  }
+  return false;
+}
+
+std::string session_mode(const SessionInfo& info) {
+  const auto& x = info.extra;
+  if (!x.is_object()) return "unknown";
+  if (const auto m = x.find("mode"); m != x.end() && m->is_string() && !m->get_ref<const std::string&>().empty())
+    return m->get<std::string>();
+  if (x.contains("replayed_from")) return "replay";
+  if (x.contains("exercise_style")) return "scripted";
+  if (x.contains("trajectory")) return "simulated";
+  return "unknown";
+}
+
 }  // namespace palpa::session

@@ -99,6 +99,9 @@ struct Score {
   std::vector<std::string> notes;  ///< e.g. "session incomplete: scored up to t = 12.3 s"
   Thresholds thresholds;
   bool complete = true;
+  /// The trainee gave the attempt up (session::is_abandoned): no exam, passed is false and
+  /// reports say "abandoned", not "failed".
+  bool abandoned = false;
   std::uint64_t samples = 0;
 };
 

@@ -75,6 +75,19 @@ struct Session {
 /// Marks placed and not removed, in placement order.
 std::vector<Mark> standing_marks(const std::vector<Event>& events);
 
+/// An attempt the trainee gave up (closed the window and chose to abandon it) ends with an
+/// End event whose note starts with this word, followed by ": " and the reason. Such a
+/// session is complete but no exam: reports call it abandoned, learning curves leave it out.
+inline constexpr std::string_view kAbandonedNote = "abandoned";
+bool is_abandoned(const Session& session);
+
+/// What produced a session (docs/session-format.md, "Modes"): "trainee" (a trainee's
+/// exercise in the window), "instructor-try" (an instructor's Try it), "scripted" (palpa-cli
+/// exercise), "replay" (exercise --device replay:...), "simulated" (palpa-cli simulate),
+/// "bench". The meta's extra "mode"; for sessions recorded before it was written, inferred
+/// from the other extra keys ("unknown" when nothing tells).
+std::string session_mode(const SessionInfo& info);
+
 /// A session file that cannot be read, or a session that is inconsistent. what() is one
 /// line "FILE: WHERE: REASON", WHERE naming the table, meta key or row (e.g.
 /// "samples row 1234: column t").

@@ -19,6 +19,9 @@ struct SessionHeader {
   std::string software_version;
   std::string started_at;   ///< ISO 8601 UTC
   std::string file;         ///< the session file as given to the command
+  std::string mode;         ///< session::session_mode: trainee, instructor-try, scripted, replay, ...
+  std::string case_file;    ///< the case file's name (case_source without its folder)
+  std::string case_id;      ///< case_activity_id: the case's stable id in reports and xAPI
 };
 
 SessionHeader header_of(const session::SessionInfo& info, const std::filesystem::path& file);

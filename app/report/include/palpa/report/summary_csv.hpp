@@ -8,13 +8,17 @@
 
 namespace palpa::report {
 
-/// "file,session_id,trainee,case,started_at,passed,score,...,complete,samples" (no newline).
+/// "file,session_id,trainee,case,started_at,passed,score,...,complete,samples,outcome,mode,
+/// case_file,case_id" (no newline).
 const std::string& csv_header();
 
 /// The row for one session (no newline): passed, safe and complete as 1/0; score 0..1;
 /// localization_error_mm the mean over found tumours, empty when none was found; numbers
 /// in their shortest exact form; text fields quoted per RFC 4180.
 std::string csv_row(const SessionHeader& header, const score::Score& score);
+
+/// "passed", "failed", "abandoned" (the trainee gave it up: no exam) or "incomplete" (cut short).
+const char* outcome_of(const score::Score& score);
 
 /// Mean localization error over found tumours (mm); NaN when none was found.
 double mean_localization_error_mm(const score::Score& score);
