@@ -27,10 +27,18 @@ target_link_libraries(ui_acceptance_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_acceptance_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 vtk_module_autoinit(TARGETS ui_acceptance_tests MODULES ${VTK_LIBRARIES})
 palpa_warnings(ui_acceptance_tests)
-add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>)
 if(PALPA_SANITIZE)
+  # Under the sanitizers the window draws several times slower than a person moves: the
+  # window's keys, force mode, gauge and close question run there; the slides and the mouse
+  # exams, whose checks assume the finger keeps pace with the pointer, run in the release
+  # build (ui.trainee exercises the same palpation code under the sanitizers).
+  add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           keysWorkAsSoonAsTheWindowIsActive theGaugeNeverOverlapsDownToTheMinimumSize
+           closingAsksAndAnAbandonedAttemptIsStoredAsSuch)
   set_tests_properties(ui.acceptance PROPERTIES ENVIRONMENT
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+else()
+  add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>)
 endif()
 
 # Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).

@@ -200,6 +200,7 @@ struct Findings {
 /// s: how long the finger may take to follow a change of the pointer or the pressure
 /// (walk there, come down from the lift, sink to the new share).
 constexpr double kSettle = 0.5;
+constexpr double kTracking = 0.03;  // share of the local thickness
 
 /// Checks every recorded sample against what the hand chose at that time (docs: the
 /// acceptance criteria of docs/user-guide.md, "How pressure works").
@@ -236,7 +237,9 @@ Findings check_session(const palpa::session::Session& s, const palpa::scene::Sce
     }
     if (sample.body < 0) continue;
     ++f.checked;
-    const double reference = fresh_press(scene, sample.body, sample.u, sample.v, share);
+    // The finger follows its target within kTracking of the thickness (the virtual device
+    // smooths the 60 Hz targets; over a tumour a millimetre deeper is newtons more).
+    const double reference = fresh_press(scene, sample.body, sample.u, sample.v, share + kTracking);
     const double ratio = force / std::max(reference, 0.2);  // below 0.2 N: the rim, nothing to feel
     f.worst_ratio = std::max(f.worst_ratio, ratio);
     if (force > 1.25 * reference + 0.05) {

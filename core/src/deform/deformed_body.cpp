@@ -20,6 +20,10 @@ constexpr int kBottom = 7;
 
 std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
+// m: a displacement this small is invisible (the tessellation tolerance is 0.2 mm) and
+// changes no force (the force is computed on the rest body).
+constexpr double kSnap = 1e-5;
+
 // How many pieces each non-empty knot span of one direction needs so that no piece is
 // longer than `span` on the top contour (chords over nine lines across), capped so the
 // direction keeps at most `max_points` control points.
@@ -180,13 +184,14 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   // basis function at the finger (a point the finger leaves goes out with a share near 0,
   // nothing is left behind to trail), and no free point of the support pulls the surface
   // off the probe (they are held: placed, not integrated, until the next press or release).
-  std::fill(held_.begin(), held_.end(), 0);
+  clear_hold(true);  // the finger moves on: what it leaves at a share near 0 is put at rest
   const int p_deg = net_.skeleton.degree_u();
   const int q_deg = net_.skeleton.degree_v();
   for (int i = basis.span_u - p_deg; i <= basis.span_u; ++i) {
     for (int j = basis.span_v - q_deg; j <= basis.span_v; ++j) {
       const std::size_t p = idx(i * cols_ + j);
       held_[p] = 1;
+      held_list_[held_count_++] = static_cast<std::uint32_t>(p);
       activate(p);
       std::fill_n(&x_[p * kComponents], kComponents, 0.0);
       std::fill_n(&v_[p * kComponents], kComponents, 0.0);
@@ -222,18 +227,41 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
 }
 
 void DeformedBody::release() {
-  std::fill(held_.begin(), held_.end(), 0);
-  if (!options_.dynamics) {
-    std::fill(x_.begin(), x_.end(), 0.0);
-    std::fill(v_.begin(), v_.end(), 0.0);
-    skeleton_ = net_.skeleton;  // same sizes: copies into the existing storage
-    top_ = net_.top;
-    bottom_ = net_.bottom;
-    active_.clear();
-    std::fill(is_active_.begin(), is_active_.end(), 0);
-    awake_ = false;
-    ++version_;
+  clear_hold(false);  // the finger lifts: the whole dent springs back on its oscillators
+  if (!options_.dynamics) put_at_rest();
+}
+
+void DeformedBody::clear_hold(bool snap) {
+  for (std::size_t k = 0; k < held_count_; ++k) {
+    const std::size_t p = held_list_[k];
+    held_[p] = 0;
+    // A point the finger slid away from leaves the dent with a share near 0 (its basis
+    // function vanishes at the edge of its support): below kSnap it is put at rest at once
+    // rather than integrated for tens of milliseconds, so a slide keeps only the support
+    // under the finger active, not the trail of points it crossed.
+    double largest = 0.0;
+    for (int c = 0; c < kComponents; ++c) largest = std::max(largest, std::abs(x_[p * kComponents + idx(c)]));
+    if (snap && largest < kSnap) {
+      std::fill_n(&x_[p * kComponents], kComponents, 0.0);
+      std::fill_n(&v_[p * kComponents], kComponents, 0.0);
+      write_back(p);  // it stays in the active list until step() sees it settled
+    }
   }
+  held_count_ = 0;
+}
+
+void DeformedBody::put_at_rest() {
+  // Only the active points are displaced: the rest of a refined net is already at rest, so
+  // this costs what the dent costs, not what the net does (thousands of points).
+  for (const std::uint32_t p : active_) {
+    std::fill_n(&x_[std::size_t{p} * kComponents], kComponents, 0.0);
+    std::fill_n(&v_[std::size_t{p} * kComponents], kComponents, 0.0);
+    is_active_[p] = 0;
+    write_back(p);
+  }
+  active_.clear();
+  awake_ = false;
+  ++version_;
 }
 
 void DeformedBody::activate(std::size_t point) {
@@ -294,14 +322,9 @@ void DeformedBody::step(double dt) {
   if (changed) ++version_;  // a static hold changes nothing: nothing to re-tessellate
   if (!any_held && !moving) {
     // At rest within the thresholds: put it exactly at rest and stop integrating.
-    std::fill(x_.begin(), x_.end(), 0.0);
-    std::fill(v_.begin(), v_.end(), 0.0);
-    skeleton_ = net_.skeleton;
-    top_ = net_.top;
-    bottom_ = net_.bottom;
-    active_.clear();
-    std::fill(is_active_.begin(), is_active_.end(), 0);
-    awake_ = false;
+    const std::uint64_t version = version_;
+    put_at_rest();
+    version_ = version;  // nothing moved that was not already drawn
   }
 }
 

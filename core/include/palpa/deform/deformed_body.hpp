@@ -1,6 +1,7 @@
 #pragma once
 // A body as drawn: its rest model plus the displacements of its control points, pressed
 // by the probe and springing back (paper sections 3.2 and 3.3; docs/model.md).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -83,6 +84,10 @@ class DeformedBody {
   void write_back(std::size_t point);
   void rebuild_steps(double dt);
   void activate(std::size_t point);
+  /// Un-holds the points the last press held; with `snap`, those left with a displacement
+  /// below an invisible 10 um are put at rest at once (a slide, not a release).
+  void clear_hold(bool snap);
+  void put_at_rest();  ///< every displaced point exactly at rest; the body sleeps
 
   const mat::MatBody* rest_;
   DeformOptions options_;
@@ -95,6 +100,8 @@ class DeformedBody {
   std::vector<char> held_;             // pressed this tick: positioned, not integrated
   std::vector<std::uint32_t> active_;  // points displaced or moving (capacity: all, never reallocates)
   std::vector<char> is_active_;
+  std::array<std::uint32_t, 64> held_list_{};  // the last press's support: at most (p+1)(q+1), p, q <= 7
+  std::size_t held_count_ = 0;
   double step_dt_ = -1.0;
   bool awake_ = false;
   std::uint64_t version_ = 0;
