@@ -260,7 +260,7 @@ TEST(Support, RandomDevicePathsKeepEveryPropertyOnEveryBundledCase) {
     EXPECT_GT(stats.contacts, stats.samples / 20) << ns.name;
     std::printf("%s: %ld samples, %ld in contact, %ld steps checked, largest |dF| %.3f N per tick\n",
                 ns.name.c_str(), stats.samples, stats.contacts, stats.checked_steps, stats.largest_jump);
-    EXPECT_GT(stats.checked_steps, stats.contacts / 4) << ns.name;  // the rest: in a support's wall
+    EXPECT_GT(stats.checked_steps, stats.contacts / 8) << ns.name;  // the rest: in a support's wall (up to 3/4 under the domes)
   }
 }
 
