@@ -689,6 +689,8 @@ class PalpationAcceptanceTest : public QObject {
 };
 
 int main(int argc, char** argv) {
+  // The long form's exams run longer than QtTest's 5 minutes per test function.
+  if (long_form() && qEnvironmentVariableIsEmpty("QTEST_FUNCTION_TIMEOUT")) qputenv("QTEST_FUNCTION_TIMEOUT", "3600000");
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   PalpationAcceptanceTest test;
