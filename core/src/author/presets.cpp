@@ -8,7 +8,7 @@ namespace {
 
 // Stiffness of tissue under a fingertip, modelled as a flat punch of radius a = 7.5 mm on
 // an incompressible half-space: k = 2 a E / (1 - nu^2) = 0.02 m * E
-// (/work/shared/research/palpation.md, "Tissue numbers for realistic cases").
+// (Sneddon 1965; the moduli and their sources: docs/case-authoring.md, "Where the presets' stiffness values come from").
 constexpr double kPunch = 0.02;  // m
 
 // Breast: 300 N/m at the glandular centre (about 15 kPa, between Samani's 3 kPa fat and

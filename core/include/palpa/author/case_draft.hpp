@@ -1,5 +1,5 @@
 #pragma once
-// The case an instructor is editing (issue 7, instructor mode), headless: the JSON
+// The case an instructor is editing (instructor mode), headless: the JSON
 // document is the source of truth (so a draft can hold a case that does not validate yet
 // and show where it is wrong), every edit is undoable, and validate() gives the problems
 // with their JSON pointers exactly as palpa-cli validate would.
@@ -30,7 +30,7 @@ struct SurfacePoint {
 struct TumourSpec {
   double depth = 0.01;       ///< m, of the centre below the picked surface point (along the normal)
   double radius = 0.005;     ///< m
-  double stiffness = 2000.0; ///< N/m: a ~100 kPa region under a fingertip (palpation.md, flat punch)
+  double stiffness = 2000.0; ///< N/m: a ~100 kPa region under a fingertip (flat punch: docs/case-authoring.md)
 };
 
 /// Approximate memory (bytes) a JSON value holds: its nodes, strings and containers.

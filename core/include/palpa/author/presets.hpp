@@ -1,5 +1,5 @@
 #pragma once
-// Body presets for instructor authoring (issue 7): a valid case body (docs/case-format.md:
+// Body presets for instructor authoring: a valid case body (docs/case-format.md:
 // rows x cols skeleton grid, radius 0 on the grid boundary, smooth fields) built from a
 // few parameters in SI units. Each preset's defaults and limits are chosen so that every
 // combination within the limits validates and fits (tests/core/author_presets_test.cpp).

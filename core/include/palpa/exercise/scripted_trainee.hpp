@@ -4,7 +4,7 @@
 // spot in contact along a strip) and finds tumours only
 // from the force it feels through write_force(), as a person would: it never sees the
 // case's ground truth. Three styles reproduce the exams the scorer must tell apart
-// (research notes, palpation.md): a thorough expert (MammaCare vertical strips, three
+// (docs/scoring.md, its sources): a thorough expert (MammaCare vertical strips, three
 // pressures), a sloppy trainee (wide strips, a skipped strip, medium pressure, false
 // marks) and a light one (full coverage, light pressure only).
 #include <array>
