@@ -1,4 +1,4 @@
-# Packaging and install (issue 9), included by tests/CMakeLists.txt.
+# Packaging and install, included by tests/CMakeLists.txt.
 
 # Where the bundled data is found at run time (core io/data_paths).
 add_executable(data_paths_tests packaging/data_paths_test.cpp)

@@ -53,7 +53,7 @@ void BM_FitBody(benchmark::State& state) {
 BENCHMARK(BM_FitBody)->Arg(7)->Arg(16)->Arg(64)->Unit(benchmark::kMicrosecond);
 
 // The A9.4 step alone: a 7-channel skeleton through an n x n grid (parameters, knots,
-// two banded factorizations, all solves), comparable with the figures in numerics.md.
+// two banded factorizations, all solves), comparable with figures other A9.4 implementations report (BENCHMARKS.md).
 void BM_InterpolateSkeleton(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const auto grid = dome_body(n, n, 0.0);

@@ -67,7 +67,7 @@ class BenchDynamics(unittest.TestCase):
                 mods = {int(r["p_prime"]): r for r in csv.DictReader(fh)}
             for p, r in mods.items():
                 self.assertLess(float(r["landing_error_rel"]), 1e-12, r)
-            # numerics.md: 1.78 at a knot with all 16 points; one point alone blows up.
+            # The least-norm modification on uniform cubic knots: 1.78 at a knot with all 16 points; one point alone blows up.
             self.assertAlmostEqual(float(mods[4]["max_dp_over_d"]), 1.7778, delta=1e-3)
             self.assertGreater(float(mods[1]["max_dp_over_d"]), 3.0)
             with open(os.path.join(d, "dynamics.png"), "rb") as fh:

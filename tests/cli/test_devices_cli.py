@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""palpa-cli devices and --device (issue 8), without hardware.
+"""palpa-cli devices and --device, without hardware.
 
 Run:
     /usr/bin/python3 tests/cli/test_devices_cli.py --cli PATH/palpa-cli --repo REPO [unittest arguments]

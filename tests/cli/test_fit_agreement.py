@@ -2,7 +2,7 @@
 """Agreement of `palpa-cli fit --eval` with the independent Python reference.
 
 Run:
-    /usr/bin/python3 tests/cli/test_fit_agreement.py --cli PATH/palpa-cli --repo /work/main [--long]
+    /usr/bin/python3 tests/cli/test_fit_agreement.py --cli PATH/palpa-cli --repo REPO [--long]
         [any unittest arguments, e.g. -v or a test name]
 
 The reference is tests/reference/a94_reference.py (pure Python, Cox-de Boor

@@ -839,7 +839,7 @@ TEST(ControlPointModification, OtherPointsBoundedAndOutsideSupportStill) {
   }
 }
 
-// numerics.md: uniform cubic knots, all 16 points: max|dP|/|D| = (23/48)^2 / (1060/2304)^2
+// Uniform cubic knots, all 16 points: max|dP|/|D| = (23/48)^2 / (1060/2304)^2
 // mid-span (basis 1/48, 23/48, 23/48, 1/48) and (2/3)^2 / (1/2)^2 = 16/9 at a knot.
 TEST(ControlPointModification, UniformCubicAmplificationRatios) {
   const BSplineSurface rest = make_surface(3, 3, uniform_interior(10), uniform_interior(10), 3, 9);
@@ -861,7 +861,7 @@ TEST(ControlPointModification, UniformCubicAmplificationRatios) {
       }
     EXPECT_NEAR(max_dp / norm(d), c.ratio, 1e-9) << "u=" << c.u << " v=" << c.v;
   }
-  EXPECT_NEAR(mid_basis * mid_basis / (mid_sq * mid_sq), 1.0847, 1e-4);  // the 1.09 of numerics.md
+  EXPECT_NEAR(mid_basis * mid_basis / (mid_sq * mid_sq), 1.0847, 1e-4);  // 1.09 mid-span
 }
 
 // =======================================================================================

@@ -1,5 +1,5 @@
 // A9.4 global surface interpolation: data reproduction, polynomial reproduction, an
-// independent dense reference, and the stress cases of numerics.md.
+// independent dense reference, and numerical stress cases (duplicates, poles, mixed units).
 #include "palpa/spline/interpolation.hpp"
 
 #include <gtest/gtest.h>
@@ -264,7 +264,7 @@ TEST(Interpolation, CollapsedGridIsAClearError) {
 }
 
 TEST(Interpolation, MixedUnitsKeepEachChannelAccurate) {
-  // Stiffness ~1e3 N/m beside positions ~1e-2 m (numerics.md stress case 9).
+  // Stiffness ~1e3 N/m beside positions ~1e-2 m (mixed units).
   const auto data = wavy_grid(9, 11);
   const auto g = GridInterpolator::from_grid(data, 9, 11, 7);
   const auto s = g.interpolate(data, 7);

@@ -50,7 +50,7 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   map_min_ = spin(this, tr(" N/m"), 0);
   map_max_ = spin(this, tr(" N/m"), 0);
   for (auto* box : {map_min_, map_max_}) box->setRange(0.0, 1e5);
-  map_min_->setValue(60.0);   // 3 kPa fat under a fingertip (palpation.md)
+  map_min_->setValue(60.0);   // 3 kPa fat under a fingertip (docs/case-authoring.md)
   map_max_->setValue(600.0);  // 30 kPa, dense glandular tissue
   map_min_->setToolTip(tr("Stiffness of black pixels"));
   map_max_->setToolTip(tr("Stiffness of white pixels"));

@@ -49,7 +49,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   depth_->setToolTip(tr("Depth of the centre below the picked skin point"));
   radius_ = spin(this, 0.01, 50.0, 0.5, 2, tr(" mm"));
   radius_->setValue(5.0);
-  // A ~100 kPa region under a fingertip (palpation.md, flat-punch estimate).
+  // A ~100 kPa region under a fingertip (flat-punch estimate: docs/case-authoring.md).
   stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
   stiffness_->setValue(2000.0);
   form->addRow(tr("Depth"), depth_);

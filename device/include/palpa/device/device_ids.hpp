@@ -12,7 +12,7 @@ struct UsbId {
   const char* model = "";
 };
 
-/// 3Dconnexion SpaceMouse family (HID, ../shared/research/palpation.md "Device protocols").
+/// 3Dconnexion SpaceMouse family (HID; docs/devices.md, "Protocol notes").
 /// Logitech-era models (vendor 0x046D) split translation and rotation over reports 1 and 2;
 /// the 3Dconnexion-era wireless models (vendor 0x256F) put all six axes in report 1,
 /// except the Compact, which keeps the split.

@@ -28,7 +28,7 @@ namespace palpa::device {
 struct FalconOptions {
   std::filesystem::path firmware;  ///< the user's firmware file; empty: it must be running already
   falcon::BootOptions boot{};
-  double max_force = 8.0;          ///< N (palpation.md, "Haptic devices")
+  double max_force = 8.0;          ///< N (the Falcon's rated peak force; docs/devices.md)
   double rate_hz = 1000.0;         ///< packets per second
   int silent_exchanges = 100;      ///< exchanges without a packet before the firmware counts as gone
   int bad_readings = 50;           ///< reads in a row with encoders no arm can produce (50 ms) before Error

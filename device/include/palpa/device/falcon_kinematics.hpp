@@ -62,7 +62,7 @@ class Kinematics {
   /// The middle of the workspace (m): the thighs at -20..59 degrees over the sphere of
   /// kWorkspaceRadius around it, the Jacobian well conditioned (condition number < 3).
   static Vec3 workspace_center() { return Vec3(0.0, 0.0, 0.12); }
-  /// Radius (m) of the sphere around workspace_center() the grip reaches (palpation.md: 0.04).
+  /// Radius (m) of the sphere around workspace_center() the grip reaches (about 0.04: docs/devices.md).
   static constexpr double kWorkspaceRadius = 0.04;
 
  private:

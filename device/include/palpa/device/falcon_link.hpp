@@ -1,7 +1,7 @@
 #pragma once
 // The Falcon's serial link: an FTDI USB-serial chip driven by vendor control requests
 // (the request numbers of the FTDI "SIO" protocol, as libftdi and libnifalcon's
-// FalconCommLibUSB use them), and the boot sequence of ../shared/research/palpation.md:
+// FalconCommLibUSB use them), and the boot sequence of docs/devices.md, "Protocol notes":
 //   9600 baud 8N1, latency 16 ms, no flow control, RTS low, DTR low then high;
 //   send 0x0A 0x43 0x0D, expect 0x0A 0x44 0x2C 0x0D back (some hosts see a 0x00 first);
 //   DTR low, ~140 kbaud, send 'A', expect 'A';

@@ -1,5 +1,5 @@
 #pragma once
-// The Falcon firmware's 16-byte packets (../shared/research/palpation.md, "Device
+// The Falcon firmware's 16-byte packets (docs/devices.md, "Protocol
 // protocols"; byte layout as libnifalcon documents it in FalconFirmwareNovintSDK.h):
 //
 //   '<'  w0 w0 w0 w0  w1 w1 w1 w1  w2 w2 w2 w2  flags  0x41  '>'

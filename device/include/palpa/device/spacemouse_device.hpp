@@ -27,7 +27,7 @@ enum class SpaceMouseMode : std::uint8_t { Position, Rate };
 
 struct SpaceMouseOptions {
   SpaceMouseMode mode = SpaceMouseMode::Rate;
-  double full_scale = 350.0;       ///< counts at full deflection (palpation.md: about +-350)
+  double full_scale = 350.0;       ///< counts at full deflection (about +-350: docs/devices.md)
   int dead_zone = 20;              ///< counts: smaller deflections are none (the cap never rests at 0)
   double workspace_radius = 0.06;  ///< m: full deflection (position), the probe's reach (rate)
   double max_speed = 0.05;         ///< m/s at full deflection (rate)

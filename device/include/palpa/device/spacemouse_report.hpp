@@ -1,5 +1,5 @@
 #pragma once
-// SpaceMouse HID input reports (../shared/research/palpation.md, "Device protocols"):
+// SpaceMouse HID input reports (docs/devices.md, "Protocol notes"):
 //  - split layout (vendor 0x046D, and the 0x256F Compact): report 1 = X, Y, Z and report
 //    2 = Rx, Ry, Rz, each int16 little-endian in bytes 1-6;
 //  - six-axis layout (0x256F wireless models): report 1 = X, Y, Z, Rx, Ry, Rz in bytes 1-12;

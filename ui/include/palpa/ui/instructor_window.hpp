@@ -1,5 +1,5 @@
 #pragma once
-// The instructor's authoring window (issue 7): a case from a preset (breast, prostate,
+// The instructor's authoring window: a case from a preset (breast, prostate,
 // skin/abdomen patch, generic slab) with its size and stiffness, tumours placed by
 // clicking the body with their depth, size, stiffness and randomization rule, a
 // stiffness overlay, stiffness maps imported from images, undo/redo, New/Open/Save with
