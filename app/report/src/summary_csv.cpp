@@ -30,8 +30,10 @@ const char* outcome_of(const score::Score& s) {
 
 std::string csv_row(const SessionHeader& h, const score::Score& s) {
   std::string row;
-  auto text = [&row](std::string_view v) {
-    if (!row.empty()) row += ',';
+  bool first = true;  // every field but the first follows a comma, even after an empty one
+  auto text = [&row, &first](std::string_view v) {
+    if (!first) row += ',';
+    first = false;
     row += csv_field(v);
   };
   auto number = [&row](double v) {
@@ -39,20 +41,19 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
     row += number_text(v);
   };
   auto flag = [&row](bool v) { row += v ? ",1" : ",0"; };
+  auto count = [&row](auto n) {
+    row += ',';
+    row += std::to_string(n);
+  };
   text(h.file);
-  row += ',';
-  row += csv_field(h.id);
-  row += ',';
-  row += csv_field(h.trainee);
-  row += ',';
-  row += csv_field(h.case_title);
-  row += ',';
-  row += csv_field(h.started_at);
+  text(h.id);
+  text(h.trainee);
+  text(h.case_title);
+  text(h.started_at);
   flag(s.passed);
   number(s.score);
   number(s.sensitivity);
-  row += ',';
-  row += std::to_string(s.false_positives);
+  count(s.false_positives);
   number(mean_localization_error_mm(s));
   number(s.coverage);
   number(s.deep_coverage);
@@ -61,22 +62,16 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   number(s.peak_force_n);
   flag(s.safe);
   number(s.palpate_search_ratio);
-  row += ',';
-  row += csv_field(s.pattern.kind);
+  text(s.pattern.kind);
   number(s.pressure.light_s);
   number(s.pressure.medium_s);
   number(s.pressure.deep_s);
   flag(s.complete);
-  row += ',';
-  row += std::to_string(s.samples);
-  row += ',';
-  row += outcome_of(s);
-  row += ',';
-  row += csv_field(h.mode);
-  row += ',';
-  row += csv_field(h.case_file);
-  row += ',';
-  row += csv_field(h.case_id);
+  count(s.samples);
+  text(outcome_of(s));
+  text(h.mode);
+  text(h.case_file);
+  text(h.case_id);
   return row;
 }
 
