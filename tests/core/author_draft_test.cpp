@@ -9,6 +9,7 @@
 #include "palpa/author/case_draft.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
 #include "palpa/scene/scene.hpp"
+#include "palpa/score/thresholds.hpp"
 #include "palpa/trainer/surface_pick.hpp"
 
 namespace palpa::author {
@@ -224,6 +225,38 @@ TEST(AuthorDraft, PresetChangeKeepsTumoursAndReportsOnesLeftOutside) {
   EXPECT_EQ(draft.document(), doc);
   draft.apply_preset(preset_defaults(Preset::Breast));
   EXPECT_EQ(draft.tumour(0)->body, "breast");
+}
+
+// The prostate's pressure bands come with the prostate and go with it, but an
+// instructor's own pass marks stay whatever the preset.
+TEST(AuthorDraft, PresetChangeSwapsTheOrgansPressureBands) {
+  const auto bands = [](const CaseDraft& d) {
+    std::vector<io::Problem> problems;
+    const auto t = score::thresholds_from_case(d.document(), problems);
+    EXPECT_TRUE(problems.empty());
+    return std::pair{t.light_max, t.deep_min};
+  };
+  const score::Thresholds defaults;
+  CaseDraft draft(preset_defaults(Preset::Breast));
+  EXPECT_EQ(bands(draft), std::pair(defaults.light_max, defaults.deep_min));
+  EXPECT_FALSE(draft.document().contains("scoring"));
+  draft.apply_preset(preset_defaults(Preset::Prostate));
+  EXPECT_EQ(bands(draft), std::pair(0.10, 0.20));
+  EXPECT_TRUE(draft.validate().empty());
+  draft.apply_preset(preset_defaults(Preset::Slab));
+  EXPECT_EQ(bands(draft), std::pair(defaults.light_max, defaults.deep_min));
+  EXPECT_FALSE(draft.document().contains("scoring"));  // nothing of the prostate's left
+  // The instructor's own deep band and pass mark survive a change of preset.
+  draft.apply_preset(preset_defaults(Preset::Prostate));
+  auto doc = draft.document();
+  doc["scoring"]["deep_min"] = 0.3;
+  doc["scoring"]["min_coverage"] = 0.8;
+  CaseDraft edited = CaseDraft::from_document(doc, "edited");
+  edited.apply_preset(preset_defaults(Preset::Breast));
+  EXPECT_EQ(bands(edited), std::pair(defaults.light_max, 0.3));
+  EXPECT_EQ(edited.document()["scoring"]["min_coverage"], 0.8);
+  // A new prostate case has them from the start.
+  EXPECT_EQ(bands(CaseDraft(preset_defaults(Preset::Prostate))), std::pair(0.10, 0.20));
 }
 
 TEST(AuthorDraft, DepthOfATumourWithoutAnchorComesFromTheSurfaceAbove) {

@@ -202,10 +202,28 @@ json& CaseDraft::tumour_json(std::size_t k) {
   return doc_["tumors"][k];
 }
 
+void CaseDraft::swap_preset_scoring(const json& made) {
+  // The old preset's scoring keys go unless the instructor changed them; the new preset's
+  // come in (an instructor's own keys stay as they are).
+  if (doc_.contains("preset") && doc_.contains("scoring") && doc_["scoring"].is_object()) {
+    if (const auto old = preset_from_json(doc_["preset"])) {
+      const json old_scoring = preset_scoring(old->preset);
+      for (const auto& [key, value] : old_scoring.items()) {
+        if (doc_["scoring"].contains(key) && doc_["scoring"][key] == value) doc_["scoring"].erase(key);
+      }
+      if (doc_["scoring"].empty()) doc_.erase("scoring");
+    }
+  }
+  if (!made.contains("scoring")) return;
+  if (!doc_.contains("scoring") || !doc_["scoring"].is_object()) doc_["scoring"] = json::object();
+  for (const auto& [key, value] : made["scoring"].items()) doc_["scoring"][key] = value;
+}
+
 void CaseDraft::apply_preset(const PresetParams& params) {
   const io::CaseFile made = make_preset_case(params, title());  // throws before anything changes
   begin_edit();
   if (!doc_.is_object()) doc_ = json::object();
+  swap_preset_scoring(made.document);
   doc_["bodies"] = made.document["bodies"];
   doc_["preset"] = made.document["preset"];
   const std::string id = made.bodies.front().id;

@@ -18,6 +18,9 @@ constexpr double kBreastCentre = 300.0;
 constexpr double kBreastPeripheryRatio = 0.4;
 // Prostate: Gerling 2010's normal gland, 21 kPa (up to 82 kPa): 420 N/m (1640 N/m).
 constexpr double kProstate = kPunch * 21e3;
+// Prostate pressure bands, shares of the gland's thickness (preset_scoring).
+constexpr double kProstateLightMax = 0.10;
+constexpr double kProstateDeepMin = 0.20;
 // Skin/abdomen patch: subcutaneous fat at small strain, 3 kPa (Samani 2007): 60 N/m.
 constexpr double kPatch = kPunch * 3e3;
 // Generic slab: the 7 kPa silicone of the phantom pair in use: 140 N/m.
@@ -174,6 +177,15 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
   return g;
 }
 
+nlohmann::json preset_scoring(Preset preset) {
+  if (preset != Preset::Prostate) return nlohmann::json::object();
+  // A digital rectal exam presses the gland a few millimetres through the rectal wall;
+  // nodules 5 mm deep are what it must find (Gerling 2010). Of a 30 mm gland: light below
+  // 3 mm, deep from 6 mm. The default bands (20 % / 50 %, from breast exams) would ask for
+  // a 15 mm press of a gland several times stiffer than breast tissue.
+  return {{"light_max", kProstateLightMax}, {"deep_min", kProstateDeepMin}};
+}
+
 io::CaseFile make_preset_case(const PresetParams& params, const std::string& title) {
   io::CaseFile file;
   file.title = title;
@@ -183,6 +195,7 @@ io::CaseFile make_preset_case(const PresetParams& params, const std::string& tit
   stored.cols = file.bodies.front().cols;
   file.document = nlohmann::json::object();
   file.document["preset"] = to_json(stored);
+  if (auto scoring = preset_scoring(params.preset); !scoring.empty()) file.document["scoring"] = std::move(scoring);
   file.document = io::to_json(file);
   return file;
 }

@@ -22,6 +22,10 @@ using detail::Vec3;
 constexpr double kStampMove = 0.0005;  // m the contact moves before the pad is stamped again
 constexpr double kCellSize = 0.002;    // m: coverage cells on the top contour
 
+// A share in whole percent, rounded down: 79.6 % of an area is not the 80 % a gate needs,
+// and must not read as if it were (the 1e-9 keeps 0.95, 94.99999... in binary, at 95).
+double percent_down(double share) { return std::floor(100.0 * share + 1e-9); }
+
 std::string printf_text(const char* format, double a, double b = 0.0, double c = 0.0) {
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, format, a, b, c);
@@ -346,12 +350,12 @@ Score score_session(const session::Session& session, const std::string& source, 
     out.gates.push_back(g);
   }
   out.gates.push_back({"coverage", out.coverage >= th.min_coverage, out.coverage, th.min_coverage,
-                       printf_text("Covered %.0f%% of the exam region (%.0f%% needed).", 100.0 * out.coverage,
+                       printf_text("Covered %.0f%% of the exam region (%.0f%% needed).", percent_down(out.coverage),
                                    100.0 * th.min_coverage)});
   out.gates.push_back({"deep_coverage", out.deep_coverage >= th.min_deep_coverage, out.deep_coverage,
                        th.min_deep_coverage,
                        printf_text("Pressed deep over %.0f%% of the exam region (%.0f%% needed).",
-                                   100.0 * out.deep_coverage, 100.0 * th.min_deep_coverage)});
+                                   percent_down(out.deep_coverage), 100.0 * th.min_deep_coverage)});
   out.gates.push_back({"safety", out.safe, out.peak_force_n, th.max_force,
                        printf_text(out.safe ? "Peak force %.1f N (limit %.1f N)." : "Peak force %.1f N is above the %.1f N limit.",
                                    out.peak_force_n, th.max_force)});

@@ -74,7 +74,8 @@ class CaseDraft {
   /// "preset"). Tumours are kept where they are (re-pointed to the new body) and lose their
   /// anchor, a point of the old skin, so that their depth is measured to the new skin; one
   /// that no longer fits shows up in validate(). Throws std::invalid_argument outside the
-  /// preset's limits.
+  /// preset's limits. The old preset's scoring keys (preset_scoring) give way to the new
+  /// one's, unless the instructor changed them.
   void apply_preset(const PresetParams& params);
   /// Throws std::invalid_argument (and records nothing) when the document is not an object.
   void set_title(const std::string& title);
@@ -139,6 +140,7 @@ class CaseDraft {
   void trim_history();
   State take_current();
   nlohmann::json& tumour_json(std::size_t k);  // throws std::out_of_range
+  void swap_preset_scoring(const nlohmann::json& made);
   /// The id of body b; throws std::out_of_range when there is none (never inserts).
   nlohmann::json body_id(std::size_t b) const;
 

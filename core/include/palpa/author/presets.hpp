@@ -50,7 +50,13 @@ PresetLimits preset_limits(Preset preset);
 /// parameter when one is outside the preset's limits.
 mat::BodyGrid make_preset_body(const PresetParams& params);
 
-/// A whole case with that body and no tumours; its document carries the parameters in a
+/// The scoring a preset's organ needs beyond the defaults (docs/scoring.md keys), an empty
+/// object when the defaults fit. The prostate is pressed a few millimetres in a digital
+/// rectal exam, not half its thickness: its pressure bands are shallower
+/// (docs/case-authoring.md, "Presets").
+nlohmann::json preset_scoring(Preset preset);
+
+/// A whole case with that body, the preset's scoring (when it has any) and no tumours; its document carries the parameters in a
 /// root field "preset" (unknown to format v1, so preserved by every tool) so that an
 /// editor can change the size later.
 io::CaseFile make_preset_case(const PresetParams& params, const std::string& title);
