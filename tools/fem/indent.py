@@ -388,11 +388,11 @@ def material_block(name, o, modulus):
     lines = [f"*MATERIAL, NAME={name}"]
     nu = o.poisson
     if o.material == "linear" or name == "INDENTER":
-        lines += ["*ELASTIC", f"{modulus!r}, {nu!r}"]
+        lines += ["*ELASTIC", f"{modulus:.10e}, {nu:.10e}"]
     else:
         c10 = modulus / (4.0 * (1.0 + nu))
         d1 = 6.0 * (1.0 - 2.0 * nu) / modulus
-        lines += ["*HYPERELASTIC, NEO HOOKE", f"{c10!r}, {d1!r}"]
+        lines += ["*HYPERELASTIC, NEO HOOKE", f"{c10:.10e}, {d1:.10e}"]
     return lines
 
 
@@ -404,7 +404,7 @@ def inp_text(o, mesh):
     used = mesh.nodes_of({1, 2, 3})
     for n in sorted(used):
         x, y = mesh.nodes[n]
-        L.append(f"{n}, {x!r}, {y!r}")
+        L.append(f"{n}, {x:.12e}, {y:.12e}")
     sets = {1: "LAYER", 2: "INCL", 3: "INDENTER"}
     for kind, ctype in (("quad8", "CAX8"), ("tri6", "CAX6")):
         for phys, name in sets.items():
@@ -446,14 +446,14 @@ def inp_text(o, mesh):
     if o.indenter == "sphere":
         L += ["TOOLAXIS, 1, 1, 0.", "DRIVE, 1, 1, 0."]
     dt = 1.0 / o.steps
-    L += ["*TIME POINTS, NAME=TP, GENERATE", f"0., 1., {dt!r}"]
+    L += ["*TIME POINTS, NAME=TP, GENERATE", f"0., 1., {dt:.10e}"]
     nonlinear = o.nlgeom or o.indenter == "sphere"
     L.append("*STEP, NLGEOM, INC=10000" if o.nlgeom else "*STEP, INC=10000")
     if nonlinear:
-        L += ["*STATIC", f"{dt!r}, 1., {dt * 1e-4!r}, {dt!r}"]
+        L += ["*STATIC", f"{dt:.10e}, 1., {dt * 1e-4:.10e}, {dt:.10e}"]
     else:
         L += ["*STATIC"]
-    L += ["*BOUNDARY", f"{load_set}, 2, 2, {-o.max_depth!r}"]
+    L += ["*BOUNDARY", f"{load_set}, 2, 2, {-o.max_depth:.10e}"]
     tp = ", TIME POINTS=TP" if nonlinear else ""
     L += [f"*NODE PRINT, NSET={load_set}, TOTALS=ONLY{tp}", "RF"]
     if o.indenter == "flat":
@@ -477,7 +477,7 @@ def contact_block(o, mesh):
     L += ["*SURFACE, NAME=BALL"] + [f"{e}, {s}" for e, s in tool]
     L += ["*CONTACT PAIR, INTERACTION=SLIP, TYPE=SURFACE TO SURFACE", "SKIN, BALL",
           "*SURFACE INTERACTION, NAME=SLIP",
-          "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{k!r}"]
+          "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{k:.10e}"]
     return L
 
 

@@ -195,33 +195,21 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
       activate(p);
       std::fill_n(&x_[p * kComponents], kComponents, 0.0);
       std::fill_n(&v_[p * kComponents], kComponents, 0.0);
-      write_back(p);
     }
   }
-
-  // What the rest of the net displaces there now (the drawn minus the rest surfaces at (u, v)).
-  std::array<double, kComponents> now{};
-  std::array<double, 4> a{};
-  std::array<double, 4> r{};
-  skeleton_.evaluate(basis, a, 0, 4);
-  net_.skeleton.evaluate(basis, r, 0, 4);
-  for (std::size_t c = 0; c < 4; ++c) now[c] = a[c] - r[c];
-  top_.evaluate(basis, a, 0, 3);
-  net_.top.evaluate(basis, r, 0, 3);
-  for (std::size_t c = 0; c < 3; ++c) now[kTop + c] = a[c] - r[c];
-  bottom_.evaluate(basis, a, 0, 3);
-  net_.bottom.evaluate(basis, r, 0, 3);
-  for (std::size_t c = 0; c < 3; ++c) now[kBottom + c] = a[c] - r[c];
-
+  // Only the support's basis functions are nonzero at (u, v), so with the support at rest
+  // the drawn surfaces pass exactly through the rest surfaces there, whatever the rest of
+  // the net does: the change needed is the whole target.
   const auto inf = influence_at(net_.skeleton, u, v, options_.influence_u, options_.influence_v);
   for (int ia = 0; ia < inf.rows; ++ia) {
     for (int jb = 0; jb < inf.cols; ++jb) {
       const std::size_t p = idx((inf.i0 + ia) * cols_ + inf.j0 + jb);
       const double w = inf.weight[idx(ia * inf.cols + jb)];
-      for (std::size_t c = 0; c < kComponents; ++c) x_[p * kComponents + c] = w * (target[c] - now[c]);
-      write_back(p);
+      for (std::size_t c = 0; c < kComponents; ++c) x_[p * kComponents + c] = w * target[c];
     }
   }
+  // Every held point is drawn where it now is: in the window displaced, outside it at rest.
+  for (std::size_t k = 0; k < held_count_; ++k) write_back(held_list_[k]);
   awake_ = true;
   ++version_;
 }
