@@ -202,7 +202,7 @@ def layer_geometry(g, o, lc_far):
     """Layer outline, split at the punch edge / contact zone and the inclusion.
 
     Returns (matrix surface, inclusion surface or None, refinement curves,
-    refinement points)."""
+    refinement points, inclusion boundary curves)."""
     h, R = o.thickness, o.radius
     edge_r = o.punch_radius if o.indenter == "flat" else contact_zone(o)
     p_base_axis = g.point(0.0, -h, lc_far)
@@ -214,7 +214,7 @@ def layer_geometry(g, o, lc_far):
              g.line(p_top_rim, p_edge)]
     zone = g.line(p_edge, p_top_axis)
     outer.append(zone)
-    inclusion = None
+    inclusion, arcs = None, []
     if o.inclusion_radius is None:
         outer.append(g.line(p_top_axis, p_base_axis))
     else:
@@ -224,11 +224,12 @@ def layer_geometry(g, o, lc_far):
         q_rim = g.point(ri, -di, lc_far)
         q_bot = g.point(0.0, -di - ri, lc_far)
         a1, a2 = g.arc(q_top, q_mid, q_rim), g.arc(q_rim, q_mid, q_bot)
+        arcs = [a1, a2]
         outer += [g.line(p_top_axis, q_top), a1, a2, g.line(q_bot, p_base_axis)]
         inclusion = g.surface([-a2, -a1, g.line(q_top, q_mid), g.line(q_mid, q_bot)])
     matrix = g.surface(outer)
     points = [p_edge] if o.indenter == "flat" else []
-    return matrix, inclusion, [zone], points
+    return matrix, inclusion, [zone], points, arcs
 
 
 def sphere_geometry(g, o, lc_far):
@@ -242,37 +243,43 @@ def sphere_geometry(g, o, lc_far):
     return surf, arc
 
 
+GROWTH = 0.25  # element size increase per unit distance away from the indenter
+
+
+def threshold(field, source, size_min, size_max, dist_min):
+    """gmsh Threshold field: size_min near the source, graded to size_max."""
+    dist_max = dist_min + (size_max - size_min) / GROWTH
+    return (f"Field[{field}] = Threshold; Field[{field}].InField = {source};"
+            f" Field[{field}].SizeMin = {size_min!r}; Field[{field}].SizeMax = {size_max!r};"
+            f" Field[{field}].DistMin = {dist_min!r}; Field[{field}].DistMax = {dist_max!r};")
+
+
 def geo_text(o, lc):
     """The whole .geo script: geometry, size fields, mesh options."""
     g = Geo()
-    lc_far = min(o.thickness / 4.0, max(16.0 * lc, 0.004))
-    matrix, inclusion, zone_curves, edge_points = layer_geometry(g, o, lc_far)
+    lc_far = max(min(o.thickness, o.radius) / 4.0, lc)
+    matrix, inclusion, zone_curves, edge_points, inclusion_curves = layer_geometry(g, o, lc_far)
     phys = [(1, [matrix])]
     if inclusion is not None:
         phys.append((2, [inclusion]))
-        zone_curves = zone_curves + []  # inclusion size is set below
     if o.indenter == "sphere":
         sphere, arc = sphere_geometry(g, o, lc_far)
         phys.append((3, [sphere]))
         zone_curves = zone_curves + [arc]
-    fields = []
+    fields = [2]
     g.add(f"Field[1] = Distance; Field[1].CurvesList = {{{', '.join(map(str, zone_curves))}}};"
-          " Field[1].NumPointsPerCurve = 200;")
-    g.add(f"Field[2] = Threshold; Field[2].InField = 1; Field[2].SizeMin = {lc!r};"
-          f" Field[2].SizeMax = {lc_far!r}; Field[2].DistMin = {2 * lc!r};"
-          f" Field[2].DistMax = {max(0.6 * o.thickness, 24 * lc)!r};")
-    fields.append(2)
+          " Field[1].NumPointsPerCurve = 400;")
+    g.add(threshold(2, 1, lc, lc_far, 2.0 * lc))
     if edge_points:
         g.add(f"Field[3] = Distance; Field[3].PointsList = {{{', '.join(map(str, edge_points))}}};")
-        g.add(f"Field[4] = Threshold; Field[4].InField = 3; Field[4].SizeMin = {lc / 3.0!r};"
-              f" Field[4].SizeMax = {lc!r}; Field[4].DistMin = {lc / 2.0!r};"
-              f" Field[4].DistMax = {6 * lc!r};")
+        g.add(threshold(4, 3, lc / 3.0, lc_far, 0.5 * lc))
         fields.append(4)
     if inclusion is not None:
-        size_inc = min(lc_far, max(lc, o.inclusion_radius / 6.0))
-        g.add(f"Field[5] = Constant; Field[5].SurfacesList = {{{inclusion}}};"
-              f" Field[5].VIn = {size_inc!r}; Field[5].VOut = {lc_far!r};")
-        fields.append(5)
+        size_inc = min(lc_far, max(lc, o.inclusion_radius / 8.0))
+        g.add(f"Field[5] = Distance; Field[5].CurvesList = {{{', '.join(map(str, inclusion_curves))}}};"
+              " Field[5].NumPointsPerCurve = 200;")
+        g.add(threshold(6, 5, size_inc, lc_far, 0.0))
+        fields.append(6)
     g.add(f"Field[9] = Min; Field[9].FieldsList = {{{', '.join(map(str, fields))}}};")
     g.add("Background Field = 9;")
     for tag, surfs in phys:
@@ -458,6 +465,8 @@ def inp_text(o, mesh):
     L += [f"*NODE PRINT, NSET={load_set}, TOTALS=ONLY{tp}", "RF"]
     if o.indenter == "flat":
         L += [f"*NODE PRINT, NSET=EDGE{tp}", "U"]
+    if o.keep:
+        L += [f"*NODE FILE{tp}", "U"]
     L.append("*END STEP")
     return "\n".join(L) + "\n", load_set
 

@@ -14,6 +14,7 @@ struct BodySnapshot {
   std::uint64_t version = 0;   ///< DeformedBody::version(): unchanged means nothing to redraw
   std::vector<double> top;     ///< control points, rows*cols*3, as in BSplineSurface::control()
   std::vector<double> bottom;
+  double sum = 0.0;  ///< of top and bottom, computed when they were copied
 };
 
 struct SceneSnapshot {
