@@ -1,4 +1,4 @@
-# Install layout and the Debian package (issue 9). Included last by the top-level
+# Install layout and the Debian package. Included last by the top-level
 # CMakeLists.txt, after every target exists. The targets install themselves (core/,
 # app/, app/gui); this file installs the data, the desktop integration, the udev rules,
 # the docs and the CMake package of the core, and configures CPack.
