@@ -23,7 +23,8 @@ Indenters (all rigid and frictionless):
           (about 18 % and 22 %) and stiffens the curve by up to ~3 %.
   pad     the same cylinder with its edge rounded (--edge-radius, default
           1 mm), pressed on with penalty contact, so the skin can wrap the
-          rounded edge. Slow with NLGEOM (about 1 s per iteration).
+          rounded edge. Slow with NLGEOM (in a trial it reached 6 mm on a
+          40 mm neo-Hookean layer in 75 s).
   sphere  a sphere of radius Rs (default 8 mm), penalty contact.
 The contact tools are elastic bodies 1000x stiffer than the layer whose top
 edge is displaced; contact is surface to surface, without friction.
@@ -170,6 +171,8 @@ def check_options(p, o):
         p.error("--max-depth must be below half of --sphere-radius")
     if o.indenter == "sphere" and o.sphere_radius >= 0.5 * o.radius:
         p.error("--sphere-radius must be below half of --radius")
+    if o.pin_edge and o.indenter != "flat":
+        p.error("--pin-edge applies to --indenter flat only")
     if o.material == "neohookean" and not o.nlgeom:
         p.error("--material neohookean needs --nlgeom")
     given = [o.inclusion_radius, o.inclusion_depth, o.inclusion_ratio]

@@ -1,0 +1,203 @@
+#!/usr/bin/python3
+"""Checks of the finite-element indentation reference (tools/fem/indent.py).
+
+Run: /usr/bin/python3 -m unittest discover -s tests/reference/fem -v
+(needs numpy; the FEM cases need gmsh and ccx on PATH and are skipped
+without them). Each FEM case is one small solve (a few seconds).
+
+What is checked, against closed-form results:
+  * flat punch on a very thick layer vs Sneddon's half-space stiffness
+    2 a E / (1 - nu^2), within 5 %, and vs Hayes' kappa within 2 %;
+  * bonded 20 and 40 mm layers: stiffer than Sneddon, in the right order,
+    and within 2 % of Sneddon x kappa(a/h, nu) (Hayes et al. 1972) on a wide
+    layer; the 60 mm-radius Palpa slab within 3 %;
+  * mesh convergence: two mesh sizes agree within 1 %;
+  * neo-Hookean + NLGEOM at small depth matches the linear stiffness
+    (checks C10 = E / (4 (1 + nu)), D1 = 6 (1 - 2 nu) / E);
+  * rigid sphere vs Hertz 4/3 E / (1 - nu^2) sqrt(R) d^1.5 within 10 %;
+  * an on-axis stiff inclusion raises the force, its ratio-1 twin does not;
+  * the command line rejects bad options and fails cleanly.
+"""
+
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOLS = os.path.normpath(os.path.join(HERE, "..", "..", "..", "tools", "fem"))
+INDENT = os.path.join(TOOLS, "indent.py")
+sys.path.insert(0, TOOLS)
+sys.dont_write_bytecode = True   # leave no __pycache__ in tools/fem
+
+try:
+    import numpy  # noqa: F401
+    import hayes
+    HAVE_NUMPY = True
+except ImportError:  # pragma: no cover - depends on the machine
+    HAVE_NUMPY = False
+
+HAVE_FEM = HAVE_NUMPY and shutil.which("gmsh") is not None and shutil.which("ccx") is not None
+
+A = 0.0075       # punch radius (m)
+NU = 0.49
+E = 5000.0       # Pa
+SNEDDON = 2.0 * A * E / (1.0 - NU * NU)   # N/m
+
+
+def run_indent(*args, expect_ok=True):
+    """Run indent.py; returns (rows, completed process)."""
+    with tempfile.TemporaryDirectory(prefix="palpa_fem_test_") as tmp:
+        out = os.path.join(tmp, "curve.csv")
+        cmd = [sys.executable, INDENT, "--out", out, "--quiet", *map(str, args)]
+        res = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             timeout=120)
+        if expect_ok and res.returncode != 0:
+            raise AssertionError(f"indent.py failed: {res.stderr.strip()}")
+        rows = []
+        if os.path.exists(out):
+            with open(out) as f:
+                rows = [(float(r["depth_m"]), float(r["force_n"])) for r in csv.DictReader(f)]
+        return rows, res
+
+
+def flat_stiffness(thickness, *extra, depth=2e-4):
+    """Secant stiffness F/d (N/m) of the linear flat punch at a small depth."""
+    rows, _ = run_indent("--thickness", thickness, "--modulus", E, "--poisson", NU,
+                         "--max-depth", depth, "--steps", 1, *extra)
+    d, F = rows[-1]
+    return F / d
+
+
+@unittest.skipUnless(HAVE_NUMPY, "numpy missing")
+class HayesFactorTest(unittest.TestCase):
+    """The layer factor solver on its own (no FEM)."""
+
+    def test_half_space_limit(self):
+        self.assertAlmostEqual(hayes.kappa(0.0, NU), 1.0, places=12)
+        self.assertLess(abs(hayes.kappa(0.01, NU) - 1.0), 0.02)
+
+    def test_monotone_in_thickness_and_poisson(self):
+        ks = [hayes.kappa(r, NU) for r in (0.1, 0.2, 0.4, 0.8)]
+        self.assertEqual(ks, sorted(ks))
+        self.assertLess(hayes.kappa(0.4, 0.3), hayes.kappa(0.4, 0.45))
+
+    def test_thin_compressible_layer_limit(self):
+        # for a/h >> 1 the layer is in uniaxial strain under the punch
+        for r in (10.0, 20.0):
+            ratio = hayes.kappa(r, 0.3, n=200) / hayes.thin_layer_kappa(r, 0.3)
+            self.assertLess(abs(ratio - 1.0), 0.05 * 10.0 / r)
+
+    def test_quadrature_converged(self):
+        k1 = hayes.kappa(0.375, NU)
+        k2 = hayes.kappa(0.375, NU, n=96, n_u=60000, u_max=60.0)
+        self.assertLess(abs(k1 - k2), 1e-5)
+
+
+@unittest.skipUnless(HAVE_FEM, "gmsh/ccx or numpy missing")
+class FlatPunchTest(unittest.TestCase):
+
+    def test_thick_layer_matches_sneddon(self):
+        k = flat_stiffness(0.3, "--radius", 0.6)
+        self.assertLess(abs(k / SNEDDON - 1.0), 0.05, f"k/Sneddon = {k / SNEDDON:.4f}")
+        kappa = hayes.kappa(A / 0.3, NU)
+        self.assertLess(abs(k / (SNEDDON * kappa) - 1.0), 0.02)
+
+    def test_bonded_layers_against_hayes(self):
+        k20 = flat_stiffness(0.02, "--radius", 0.18)
+        k40 = flat_stiffness(0.04, "--radius", 0.18)
+        self.assertGreater(k20, k40)
+        self.assertGreater(k40, 1.1 * SNEDDON)
+        for h, k in ((0.02, k20), (0.04, k40)):
+            kappa = hayes.kappa(A / h, NU)
+            self.assertLess(abs(k / (SNEDDON * kappa) - 1.0), 0.02,
+                            f"h={h}: FEM/Sneddon {k / SNEDDON:.4f}, kappa {kappa:.4f}")
+
+    def test_palpa_slab_stiffness_per_kpa(self):
+        # 60 mm radius slab, per kPa of E: about 24.5 (40 mm) and 31.7 (20 mm) N/m
+        k40 = flat_stiffness(0.04) / (E / 1000.0)
+        k20 = flat_stiffness(0.02) / (E / 1000.0)
+        s = SNEDDON / (E / 1000.0)
+        self.assertLess(abs(k40 / (s * hayes.kappa(A / 0.04, NU)) - 1.0), 0.03)
+        self.assertLess(abs(k20 / (s * hayes.kappa(A / 0.02, NU)) - 1.0), 0.03)
+        self.assertGreater(k20, k40)
+
+    def test_mesh_convergence(self):
+        fine = flat_stiffness(0.04, "--mesh-size", A / 24.0)
+        coarse = flat_stiffness(0.04, "--mesh-size", A / 12.0)
+        self.assertLess(abs(coarse / fine - 1.0), 0.01)
+
+    def test_neo_hookean_small_depth_matches_linear(self):
+        mesh = ("--mesh-size", 0.0008)
+        lin = flat_stiffness(0.04, *mesh)
+        rows, _ = run_indent("--thickness", 0.04, "--modulus", E, "--poisson", NU,
+                             "--material", "neohookean", "--nlgeom", "--max-depth", 2e-4,
+                             "--steps", 2, *mesh)
+        d, F = rows[-1]
+        self.assertEqual(len(rows), 3)
+        self.assertLess(abs(F / d / lin - 1.0), 0.02)
+
+    def test_stiff_inclusion_raises_force(self):
+        inc = ("--inclusion-radius", 0.005, "--inclusion-depth", 0.01)
+        plain = flat_stiffness(0.04)
+        twin = flat_stiffness(0.04, *inc, "--inclusion-ratio", 1)
+        lump = flat_stiffness(0.04, *inc, "--inclusion-ratio", 5)
+        self.assertLess(abs(twin / plain - 1.0), 0.01)
+        self.assertGreater(lump / twin, 1.02)
+
+
+@unittest.skipUnless(HAVE_FEM, "gmsh/ccx or numpy missing")
+class SphereTest(unittest.TestCase):
+
+    def test_hertz(self):
+        R = 0.008
+        rows, _ = run_indent("--indenter", "sphere", "--thickness", 0.06, "--modulus", E,
+                             "--poisson", NU, "--max-depth", 4e-4, "--steps", 2)
+        for d, F in rows[1:]:
+            hertz = 4.0 / 3.0 * E / (1.0 - NU * NU) * math.sqrt(R) * d ** 1.5
+            self.assertLess(abs(F / hertz - 1.0), 0.10, f"d={d}: F/Hertz = {F / hertz:.3f}")
+        (d1, F1), (d2, F2) = rows[1], rows[2]
+        exponent = math.log(F2 / F1) / math.log(d2 / d1)
+        self.assertLess(abs(exponent - 1.5), 0.1)
+
+
+@unittest.skipUnless(HAVE_NUMPY, "numpy missing")
+class CommandLineTest(unittest.TestCase):
+
+    def check_rejected(self, *args, message):
+        rows, res = run_indent(*args, expect_ok=False)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn(message, res.stderr)
+        self.assertEqual(rows, [])
+
+    def test_bad_options(self):
+        self.check_rejected("--thickness", -1, "--modulus", E, message="positive")
+        self.check_rejected("--thickness", 0.04, "--modulus", E, "--poisson", 0.5,
+                            message="[0, 0.5)")
+        self.check_rejected("--thickness", 0.04, "--modulus", E, "--max-depth", 0.05,
+                            message="smaller than --thickness")
+        self.check_rejected("--thickness", 0.04, "--modulus", E, "--material", "neohookean",
+                            message="needs --nlgeom")
+        self.check_rejected("--thickness", 0.04, "--modulus", E, "--inclusion-radius", 0.005,
+                            message="all three")
+        self.check_rejected("--thickness", 0.04, "--modulus", E, "--indenter", "cone",
+                            message="invalid choice")
+
+    @unittest.skipUnless(HAVE_FEM, "gmsh/ccx missing")
+    def test_non_convergence_is_reported(self):
+        # St Venant-Kirchhoff (linear + NLGEOM) at nu = 0.49 collapses under
+        # a flat punch well before 30 % of the thickness on this mesh
+        rows, res = run_indent("--thickness", 0.04, "--modulus", E, "--nlgeom",
+                               "--max-depth", 0.012, "--steps", 3, "--mesh-size", 0.0015,
+                               expect_ok=False)
+        self.assertEqual(res.returncode, 1)
+        self.assertIn("CalculiX stopped at depth", res.stderr)
+        self.assertEqual(rows, [])
+
+
+if __name__ == "__main__":
+    unittest.main()
