@@ -83,31 +83,29 @@ class SolveError(RuntimeError):
 # --------------------------------------------------------------------------
 # options
 
-def positive(text):
+def parsed(text, kind, what):
     try:
-        value = float(text)
+        return kind(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text}")
+        raise argparse.ArgumentTypeError(f"not {what}: {text}")
+
+
+def positive(text):
+    value = parsed(text, float, "a number")
     if not (value > 0.0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
     return value
 
 
 def poisson(text):
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text}")
+    value = parsed(text, float, "a number")
     if not 0.0 <= value < 0.5:
         raise argparse.ArgumentTypeError(f"must be in [0, 0.5), got {text}")
     return value
 
 
 def count(text):
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text}")
+    value = parsed(text, int, "an integer")
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text}")
     return value
