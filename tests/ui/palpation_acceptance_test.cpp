@@ -475,14 +475,19 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
   return *w.score();
 }
 
+/// The skin (the top contour's point) over plan position (x, y) of a case's scene.
+palpa::trainer::SurfacePick skin_at(const palpa::scene::Scene& scene, double x, double y) {
+  const auto skin = palpa::trainer::TopContourPicker(scene).pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
+  if (!skin) throw std::invalid_argument("no skin at the tumour's plan position");
+  return *skin;
+}
+
 /// A tumour of `radius` whose centre is the skeleton point (mid-depth) under the skin at
-/// plan position (x, y): the foot point of the top contour's point there.
+/// plan position (x, y): the foot point of the skin's point there.
 palpa::mat::Tumour tumour_under(const palpa::io::CaseFile& file, double x, double y, double radius, double stiffness) {
   const auto scene = palpa::scene::Scene::build(file, "case");
   const auto& sb = scene.body(0);
-  const auto skin = palpa::trainer::TopContourPicker(scene).pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
-  if (!skin) throw std::invalid_argument("no skin at the tumour's plan position");
-  const auto foot = sb.search.closest(sb.body.skeleton(), skin->point);
+  const auto foot = sb.search.closest(sb.body.skeleton(), skin_at(scene, x, y).point);
   return {sb.body.id(), {foot.point.x(), foot.point.y(), foot.point.z()}, radius, stiffness};
 }
 
@@ -491,9 +496,8 @@ palpa::mat::Tumour tumour_under(const palpa::io::CaseFile& file, double x, doubl
 palpa::mat::Tumour tumour_below_skin(const palpa::io::CaseFile& file, double x, double y, double depth, double radius,
                                      double stiffness) {
   const auto scene = palpa::scene::Scene::build(file, "case");
-  const auto skin = palpa::trainer::TopContourPicker(scene).pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
-  if (!skin) throw std::invalid_argument("no skin at the tumour's plan position");
-  const Vec3 c = skin->point - depth * skin->normal;
+  const auto skin = skin_at(scene, x, y);
+  const Vec3 c = skin.point - depth * skin.normal;
   return {scene.body(0).body.id(), {c.x(), c.y(), c.z()}, radius, stiffness};
 }
 
