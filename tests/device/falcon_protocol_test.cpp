@@ -2,6 +2,7 @@
 // chip, boot loader and firmware: packet framing both ways, the boot sequence with its
 // firmware echo and retries, encoders in, torques out, homing, unplugging and errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -209,7 +210,10 @@ struct BootedFalcon {
 
 BootedFalcon booted(FalconOptions options = {}) {
   const auto firmware = firmware_bytes(200);
-  const auto path = std::filesystem::temp_directory_path() / "palpa_falcon_test_firmware.bin";
+  // One file per process: ctest runs these tests in parallel processes, and one that
+  // removes a shared file under another's connect() fails that one.
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("palpa_falcon_test_firmware_" + std::to_string(::getpid()) + ".bin");
   {
     std::ofstream out(path, std::ios::binary);
     out.write(reinterpret_cast<const char*>(firmware.data()), static_cast<std::streamsize>(firmware.size()));
