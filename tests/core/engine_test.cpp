@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "palpa/engine/drawn_scene.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 
@@ -118,6 +119,7 @@ TEST(Engine, ForceIsTheContactForceAndTheDrawnSurfaceFollowsTheProbe) {
   EngineOptions options;
   options.safety.max_force_rate = 1e9;  // let the requested force through unchanged
   Engine engine(scene, device, options);
+  DrawnScene drawn(engine);
   auto state = scene.make_state();
   scene::ProbeOptions probe;
   probe.remember_side = true;
@@ -125,6 +127,7 @@ TEST(Engine, ForceIsTheContactForceAndTheDrawnSurfaceFollowsTheProbe) {
   for (int k = 0; k <= 2000; ++k) {
     const double t = k * 1e-3;
     const Sample s = engine.tick(t);
+    drawn.follow(engine.last_touch());
     const Vec3 q(s.position[0], s.position[1], s.position[2]);
     const auto r = scene.probe(q, state, probe);
     ASSERT_EQ(s.body, r.body) << t;
@@ -133,7 +136,7 @@ TEST(Engine, ForceIsTheContactForceAndTheDrawnSurfaceFollowsTheProbe) {
       ++contacts;
       // The drawn top contour under the probe is on the probe.
       std::array<double, 3> p{};
-      engine.drawn(0).top().evaluate(s.u, s.v, p);
+      drawn.drawn(0).top().evaluate(s.u, s.v, p);
       EXPECT_LT((Vec3(p[0], p[1], p[2]) - q).norm(), 1e-9) << t;
     }
   }
@@ -200,9 +203,16 @@ TEST(Engine, WithoutDynamicsAReleasedBodyIsAtRestAtOnce) {
   EngineOptions options;
   options.dynamics = false;
   Engine engine(scene, device, options);
-  for (int k = 0; k <= 2000; ++k) engine.tick(k * 1e-3);  // ends outside the body
-  EXPECT_EQ(engine.drawn(0).max_displacement(), 0.0);
-  EXPECT_FALSE(engine.drawn(0).awake());
+  DrawnScene drawn(engine);
+  int pressed = 0;
+  for (int k = 0; k <= 2000; ++k) {  // ends outside the body
+    engine.tick(k * 1e-3);
+    drawn.follow(engine.last_touch());
+    pressed += drawn.drawn(0).awake() ? 1 : 0;
+  }
+  EXPECT_GT(pressed, 100);
+  EXPECT_EQ(drawn.drawn(0).max_displacement(), 0.0);
+  EXPECT_FALSE(drawn.drawn(0).awake());
 }
 
 }  // namespace

@@ -4,11 +4,16 @@
 
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
+#include <memory>
 #include <new>
+#include <thread>
 
 #include "palpa/deform/deformed_body.hpp"
+#include "palpa/engine/drawn_scene.hpp"
 #include "palpa/engine/engine.hpp"
+#include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
@@ -88,6 +93,51 @@ TEST(ProbeRealTime, TheEngineTickAllocatesNothing) {
   }
   EXPECT_EQ(palpa::test::allocations() - before, 0);
   EXPECT_GT(contacts, 100);
+}
+
+TEST(ProbeRealTime, TheDrawnBodiesFollowTheTicksAllocatingNothing) {
+  // The display half: the refined drawn nets pressed, released and springing back.
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  engine::VirtualDevice device(0.02);
+  engine::Engine eng(scene, device);
+  engine::DrawnScene drawn(eng);
+  ASSERT_GT(drawn.drawn(0).top().rows(), scene.body(0).body.top().rows()) << "refined for display";
+  eng.tick(0.0);
+  drawn.follow(eng.last_touch());  // sizes the spring tables for the tick length
+  const long before = palpa::test::allocations();
+  int awake = 0;
+  for (int k = 1; k < 4000; ++k) {
+    const double t = k * 1e-3;
+    device.set_target(Vec3(0.04 * std::sin(t), 0.05 * std::cos(0.7 * t), 0.035 + 0.03 * std::sin(3.1 * t)));
+    eng.tick(t);
+    drawn.follow(eng.last_touch(), k % 500 == 0 ? 30 : 1);  // now and then after lost touches
+    awake += drawn.drawn(0).awake() ? 1 : 0;
+  }
+  EXPECT_EQ(palpa::test::allocations() - before, 0);
+  EXPECT_GT(awake, 100);
+}
+
+TEST(ProbeRealTime, TheRunningHapticAndDisplayThreadsAllocateNothing) {
+  // Counted while both of RealtimeLoop's threads run and this thread only moves the target:
+  // any allocation in that time is theirs.
+  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+  engine::VirtualDevice device(0.01);
+  engine::Engine eng(scene, device);
+  auto loop = std::make_unique<engine::RealtimeLoop>(eng);
+  device.set_target(Vec3(0.0, 0.0, 0.08));
+  loop->start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // first ticks size their tables
+  const long before = palpa::test::allocations();
+  for (int k = 0; k < 60; ++k) {
+    const double t = 0.01 * k;
+    device.set_target(Vec3(0.03 * std::sin(3 * t), 0.02 * std::cos(2 * t), 0.036 - 0.008 * std::sin(7 * t)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const long during = palpa::test::allocations() - before;
+  loop->stop();
+  EXPECT_EQ(during, 0);
+  loop->update_snapshot();
+  EXPECT_GT(loop->snapshot().tick, 500u) << "the loop ticked all along";
 }
 
 }  // namespace

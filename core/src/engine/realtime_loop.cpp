@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 
 namespace palpa::engine {
@@ -25,16 +26,32 @@ void advance(timespec& t, long ns) {
 
 }  // namespace
 
+// The most haptic periods the drawn bodies catch up on after lost touches: 1 s of springs,
+// enough for any dent to settle, and a bounded amount of work whatever the gap.
+constexpr std::uint64_t kMaxCatchUp = 1000;
+
 RealtimeLoop::RealtimeLoop(Engine& engine, const RealtimeOptions& options)
-    : engine_(&engine), options_(options), snapshots_(SceneSnapshot::sized_for(engine)), stats_(LoopStats{}) {}
+    : engine_(&engine),
+      options_(options),
+      drawn_(engine),
+      snapshots_(SceneSnapshot::sized_for(drawn_)),
+      stats_(LoopStats{}) {}
 
 RealtimeLoop::~RealtimeLoop() { stop(); }
 
 std::string RealtimeLoop::start() {
   if (running_.load()) return scheduling_;
   stop_requested_.store(false);
+  display_stop_.store(false);
   started_.store(0);
-  thread_ = std::thread([this] { run(); });  // throws if no thread can be made: nothing set yet
+  display_ = std::thread([this] { run_display(); });  // throws if no thread can be made: nothing set yet
+  try {
+    thread_ = std::thread([this] { run(); });
+  } catch (...) {
+    display_stop_.store(true, std::memory_order_release);
+    display_.join();
+    throw;
+  }
   running_.store(true, std::memory_order_release);
   while (started_.load(std::memory_order_acquire) == 0) std::this_thread::yield();
   return scheduling_;
@@ -44,7 +61,48 @@ void RealtimeLoop::stop() {
   if (!thread_.joinable()) return;
   stop_requested_.store(true, std::memory_order_release);
   thread_.join();
+  display_stop_.store(true, std::memory_order_release);  // after the last touch was pushed
+  display_.join();
   running_.store(false, std::memory_order_release);
+}
+
+int RealtimeLoop::snapshot_every() const {
+  const double rate = engine_->options().rate_hz;
+  return std::max(1, static_cast<int>(rate / std::max(1.0, options_.snapshot_rate) + 0.5));
+}
+
+void RealtimeLoop::run_display() {
+  // Normal priority, and it may sleep: it only has to keep up on average. The snapshot is
+  // published every snapshot_every() ticks of haptic time, and after the last touch.
+  const int every = snapshot_every();
+  int since_snapshot = 0;
+  std::uint64_t last_tick = 0;
+  Touch touch;
+  Sample last;
+  for (;;) {
+    const bool stopping = display_stop_.load(std::memory_order_acquire);  // before draining: nothing is missed
+    bool took = false;
+    while (touches_.try_pop(touch)) {
+      took = true;
+      const std::uint64_t gap = last_tick == 0 ? 1 : std::clamp<std::uint64_t>(touch.tick - last_tick, 1, kMaxCatchUp);
+      drawn_.follow(touch, static_cast<int>(gap));
+      last_tick = touch.tick;
+      last = touch.sample;
+      if (++since_snapshot >= every) {
+        snapshots_.write_slot().capture(drawn_, last, last_tick);
+        snapshots_.publish();
+        since_snapshot = 0;
+      }
+    }
+    if (!took) {
+      if (stopping) break;
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+  }
+  if (since_snapshot > 0) {  // the final state, so the GUI shows where the finger stopped
+    snapshots_.write_slot().capture(drawn_, last, last_tick);
+    snapshots_.publish();
+  }
 }
 
 const LoopStats& RealtimeLoop::stats() {
@@ -95,8 +153,6 @@ void RealtimeLoop::run() {
   double fault_until = -1.0;   // a stall or a stop keeps the fault (force ramping to 0) until then
   double stop_at = -1.0;
   int since_publish = 0;
-  const int snapshot_every = std::max(1, static_cast<int>(rate / std::max(1.0, options_.snapshot_rate) + 0.5));
-  int since_snapshot = 0;
   std::uint64_t tick_number = 0;
   for (;;) {
     advance(deadline, period_ns);
@@ -124,11 +180,9 @@ void RealtimeLoop::run() {
 
     const Sample s = engine_->tick(start, overrun, fault);
     ++tick_number;
-    if (++since_snapshot >= snapshot_every) {
-      snapshots_.write_slot().capture(*engine_, s, tick_number);
-      snapshots_.publish();
-      since_snapshot = 0;
-    }
+    Touch touch = engine_->last_touch();
+    touch.tick = tick_number;
+    if (!touches_.try_push(touch)) dropped_touches_.fetch_add(1, std::memory_order_relaxed);
     if (!samples_.try_push(s)) dropped_.fetch_add(1, std::memory_order_relaxed);
 
     clock_gettime(CLOCK_MONOTONIC, &now);

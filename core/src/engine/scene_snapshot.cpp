@@ -4,18 +4,18 @@
 
 namespace palpa::engine {
 
-SceneSnapshot SceneSnapshot::sized_for(const Engine& engine) {
+SceneSnapshot SceneSnapshot::sized_for(const DrawnScene& drawn) {
   SceneSnapshot s;
-  s.bodies.resize(engine.body_count());
-  for (std::size_t b = 0; b < engine.body_count(); ++b) {
-    s.bodies[b].top.assign(engine.drawn(b).top().control().size(), 0.0);
-    s.bodies[b].bottom.assign(engine.drawn(b).bottom().control().size(), 0.0);
+  s.bodies.resize(drawn.body_count());
+  for (std::size_t b = 0; b < drawn.body_count(); ++b) {
+    s.bodies[b].top.assign(drawn.drawn(b).top().control().size(), 0.0);
+    s.bodies[b].bottom.assign(drawn.drawn(b).bottom().control().size(), 0.0);
     s.bodies[b].version = ~std::uint64_t{0};  // matches no body version: the first capture copies
   }
   return s;
 }
 
-void SceneSnapshot::capture(const Engine& engine, const Sample& last, std::uint64_t tick_number) {
+void SceneSnapshot::capture(const DrawnScene& scene, const Sample& last, std::uint64_t tick_number) {
   tick = tick_number;
   t = last.t;
   probe = last.position;
@@ -26,7 +26,7 @@ void SceneSnapshot::capture(const Engine& engine, const Sample& last, std::uint6
   depth = last.depth;
   double sum = 0.0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const auto& drawn = engine.drawn(b);
+    const auto& drawn = scene.drawn(b);
     auto& out = bodies[b];
     // Only a body whose drawn surfaces changed is copied and summed: a refined net has
     // thousands of points, and summing every body at every capture would read them all.

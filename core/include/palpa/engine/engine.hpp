@@ -1,8 +1,10 @@
 #pragma once
 // The haptic engine's tick (paper section 4: a separate high-priority thread at ~1 kHz):
-// read the device, find the contact, deform, integrate the awake bodies, govern and write
-// the force. The tick is allocation-free, lock-free and does no I/O; the real-time thread
-// that paces it lives in realtime_loop.hpp.
+// read the device, find the contact and the force on the rest bodies, govern and write the
+// force. The tick is allocation-free, lock-free and does no I/O; the real-time thread that
+// paces it lives in realtime_loop.hpp. What the trainee sees, the bodies pressed in and
+// springing back, is computed from each tick's Touch by a DrawnScene (drawn_scene.hpp),
+// beside the tick rather than inside it: the force never depends on the drawn bodies.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -19,10 +21,10 @@ inline constexpr double kDisplaySpan = 0.004;
 
 struct EngineOptions {
   double rate_hz = 1000.0;
-  bool dynamics = true;  ///< the paper's Table 1 has columns with and without dynamics
+  bool dynamics = true;  ///< the drawn bodies spring back (Table 1 has columns with and without)
   bool shear = true;
   scene::ProbeOptions probe{};  ///< foot-point method and force options (the entry side is always remembered)
-  /// The drawn bodies: refined for display so that a dent is fingertip-sized (display_span).
+  /// The drawn bodies (DrawnScene): refined for display so that a dent is fingertip-sized.
   deform::DeformOptions deform{.display_span = kDisplaySpan};
   SafetyOptions safety{};
 };
@@ -42,6 +44,18 @@ struct Sample {
   bool fault = false;          ///< device error, stall, pause: the force is ramping to zero
 };
 
+/// What the drawn bodies need from one tick to follow the finger (DrawnScene::follow): the
+/// tick's sample and the contact's entered side and way out. Plain data, like Sample, so it
+/// crosses from the haptic thread to the display thread through a lock-free ring.
+struct Touch {
+  Sample sample;
+  std::uint64_t tick = 0;  ///< counts ticks from 1 (RealtimeLoop); a gap means touches were lost
+  std::array<double, 3> outward{0.0, 0.0, 1.0};  ///< contact::Contact::outward
+  std::int8_t side = 1;    ///< contact::Contact::side
+  bool inside = false;     ///< the probe is in body sample.body (contact::Contact::inside)
+  bool dynamics = true;    ///< EngineOptions::dynamics at this tick (it can change between ticks)
+};
+
 class RealtimeLoop;
 
 class Engine {
@@ -53,8 +67,9 @@ class Engine {
   /// shutdown, watchdog) ramps the force to zero like a device error.
   Sample tick(double t, bool overrun = false, bool hold_fault = false) noexcept;
 
-  std::size_t body_count() const { return drawn_.size(); }
-  const deform::DeformedBody& drawn(std::size_t body) const { return drawn_[body]; }
+  /// The last tick's Touch (tick number 0: the RealtimeLoop numbers them).
+  const Touch& last_touch() const { return touch_; }
+  const scene::Scene& scene() const { return *scene_; }
   const EngineOptions& options() const { return options_; }
   const ForceGovernor& governor() const { return governor_; }
   Device& device() { return *device_; }
@@ -64,20 +79,16 @@ class Engine {
   // it through the loop's command queue, so nothing else may call them.
   friend class RealtimeLoop;
   void set_shear(bool on) { options_.shear = on; options_.probe.force.shear = on; }
-  void set_dynamics(bool on) {
-    options_.dynamics = on;
-    for (auto& body : drawn_) body.set_dynamics(on);
-  }
+  void set_dynamics(bool on) { options_.dynamics = on; }  // reaches the drawn bodies with the next Touch
 
   const scene::Scene* scene_;
   Device* device_;
   EngineOptions options_;
   scene::ProbeState state_;
-  std::vector<deform::DeformedBody> drawn_;
   ForceGovernor governor_;
+  Touch touch_;
   double last_t_ = 0.0;
   bool started_ = false;
-  int pressed_ = -1;  // body pressed at the last tick
   std::array<double, 3> last_position_{};  // the probe at the last tick the device read Ok
 };
 

@@ -1,11 +1,12 @@
 #pragma once
-// What the GUI draws, copied out of the haptic thread: the drawn contours' control points
-// of every body, the probe and the force. Sized once; copying one into another of the same
-// scene allocates nothing.
+// What the GUI draws, copied out of the display thread (RealtimeLoop): the drawn contours'
+// control points of every body, the probe and the force. Sized once; capturing into one of
+// the same scene allocates nothing.
 #include <array>
 #include <cstdint>
 #include <vector>
 
+#include "palpa/engine/drawn_scene.hpp"
 #include "palpa/engine/engine.hpp"
 
 namespace palpa::engine {
@@ -29,10 +30,11 @@ struct SceneSnapshot {
   std::vector<BodySnapshot> bodies;
   double checksum = 0.0;  ///< sum of all control-point values, so a torn copy would show
 
-  /// A snapshot sized for the engine's bodies.
-  static SceneSnapshot sized_for(const Engine& engine);
-  /// Fills this snapshot from the engine (same sizes: no allocation).
-  void capture(const Engine& engine, const Sample& last, std::uint64_t tick_number);
+  /// A snapshot sized for the drawn bodies.
+  static SceneSnapshot sized_for(const DrawnScene& drawn);
+  /// Fills this snapshot from the drawn bodies and the tick they last followed (same
+  /// sizes: no allocation).
+  void capture(const DrawnScene& drawn, const Sample& last, std::uint64_t tick_number);
   /// Recomputes the checksum of the contents (tests and the GUI's debug checks).
   double contents_sum() const;
 };
