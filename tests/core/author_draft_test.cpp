@@ -287,6 +287,26 @@ TEST(AuthorDraft, StiffnessMapIsAnUndoableEdit) {
   EXPECT_EQ(draft.document(), before);
 }
 
+TEST(AuthorDraft, AStiffnessMapOnABodyInKpaKeepsItsForceLaw) {
+  // A map is authored in N/m: the body given by its modulus becomes one given by stiffness,
+  // and keeps the calibrated law it had by default (no modulus left beside the stiffness).
+  CaseDraft preset(preset_defaults(Preset::Slab));
+  auto doc = preset.document();
+  auto& body = doc["bodies"][0];
+  body.erase("stiffness");
+  body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
+  body["poisson"] = 0.45;
+  CaseDraft draft = CaseDraft::from_document(doc, "kpa.json");
+  ASSERT_TRUE(draft.validate().empty());
+  draft.apply_stiffness_map(0, StiffnessMap{1, 2, {0.0, 1.0}}, 100.0, 300.0);
+  const auto& edited = draft.document()["bodies"][0];
+  EXPECT_FALSE(edited.contains("modulus"));
+  EXPECT_FALSE(edited.contains("poisson"));
+  EXPECT_EQ(edited["force_model"], "calibrated");
+  EXPECT_DOUBLE_EQ(edited["stiffness"][10].get<double>(), 300.0);
+  EXPECT_TRUE(draft.validate().empty());
+}
+
 // A body change keeps the tumour where it is and measures its depth to the new skin: the
 // breast's apex 50 mm high with a tumour 10 mm below it; 60 mm thick, the reported depth is
 // the distance from the (unmoved) centre up to the new apex, picked independently (about

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/mat/mat_body.hpp"
 
 namespace palpa::io {
@@ -52,6 +53,12 @@ Problem problem_after(const std::function<void(json&)>& mutate) {
   json doc = base_case();
   mutate(doc);
   return first_problem(doc.dump());
+}
+
+// The base case's body given by its Young's modulus (5 kPa) instead of its stiffness.
+void by_modulus(json& d) {
+  d["bodies"][0].erase("stiffness");
+  d["bodies"][0]["modulus"] = std::vector<double>(12, 5000.0);
 }
 
 struct Rule {
@@ -99,6 +106,13 @@ const Rule kRules[] = {
     {"negative stiffness", [](json& d) { d["bodies"][0]["stiffness"][3] = -1.0; }, "/bodies/0/stiffness/3", "negative stiffness"},
     {"stiffness bool", [](json& d) { d["bodies"][0]["stiffness"][3] = true; }, "/bodies/0/stiffness/3", "number"},
     {"missing stiffness", [](json& d) { d["bodies"][0].erase("stiffness"); }, "/bodies/0", "stiffness"},
+    {"stiffness and modulus", [](json& d) { d["bodies"][0]["modulus"] = std::vector<double>(12, 5000.0); },
+     "/bodies/0/modulus", "not both"},
+    {"negative modulus", [](json& d) { by_modulus(d); d["bodies"][0]["modulus"][3] = -1.0; }, "/bodies/0/modulus/3", "negative modulus"},
+    {"modulus count", [](json& d) { by_modulus(d); d["bodies"][0]["modulus"].erase(0); }, "/bodies/0/modulus", "expected rows*cols"},
+    {"poisson one half", [](json& d) { by_modulus(d); d["bodies"][0]["poisson"] = 0.5; }, "/bodies/0/poisson", "outside"},
+    {"poisson string", [](json& d) { by_modulus(d); d["bodies"][0]["poisson"] = "0.45"; }, "/bodies/0/poisson", "number"},
+    {"force model typo", [](json& d) { d["bodies"][0]["force_model"] = "calibrate"; }, "/bodies/0/force_model", "\"calibrated\""},
     {"negative damping", [](json& d) { d["bodies"][0]["damping"] = json::array(); for (int k = 0; k < 12; ++k) d["bodies"][0]["damping"].push_back(k == 7 ? -0.1 : 0.1); },
      "/bodies/0/damping/7", "negative damping"},
     {"zero mass", [](json& d) { d["bodies"][0]["mass"] = json::array(); for (int k = 0; k < 12; ++k) d["bodies"][0]["mass"].push_back(k == 2 ? 0.0 : 1e-3); },
@@ -120,6 +134,48 @@ INSTANTIATE_TEST_SUITE_P(Rules, Validation, ::testing::ValuesIn(kRules),
                            for (auto& c : n) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+TEST(CaseFile, AModulusGivesTheStiffnessOfTheLocalLayerUnderAFingertip) {
+  json doc = base_case();
+  by_modulus(doc);
+  const auto file = parse_case(doc.dump(), "kpa.json");
+  const auto& g = file.bodies[0];
+  ASSERT_EQ(g.stiffness.size(), 12u);
+  EXPECT_EQ(g.poisson, 0.49);
+  EXPECT_EQ(g.force_model, mat::ForceModel::Calibrated);
+  for (std::size_t k = 0; k < 12; ++k) {
+    // k = 2 a E kappa(a / h) / (1 - nu^2) over the local thickness h = 2R (at least the pad radius).
+    EXPECT_NEAR(g.stiffness[k] / mat::layer_stiffness(5000.0, 0.49, mat::kFingertipPadRadius, 2.0 * g.radius[k]), 1.0,
+                1e-6) << k;
+  }
+  // Saved as authored: the modulus, not the derived stiffness; no default written out.
+  const json saved = to_json(file);
+  EXPECT_FALSE(saved["bodies"][0].contains("stiffness"));
+  EXPECT_EQ(saved["bodies"][0]["modulus"], doc["bodies"][0]["modulus"]);
+  EXPECT_FALSE(saved["bodies"][0].contains("force_model"));
+  EXPECT_FALSE(saved["bodies"][0].contains("poisson"));
+  EXPECT_EQ(parse_case(saved.dump(), "again.json").bodies[0].stiffness, g.stiffness);
+}
+
+TEST(CaseFile, ForceModelAndPoissonAreKeptWhereGiven) {
+  json doc = base_case();
+  EXPECT_EQ(parse_case(doc.dump(), "n.json").bodies[0].force_model, mat::ForceModel::Paper) << "N/m: the paper's law";
+  doc["bodies"][0]["force_model"] = "calibrated";
+  EXPECT_EQ(parse_case(doc.dump(), "n.json").bodies[0].force_model, mat::ForceModel::Calibrated);
+  by_modulus(doc);
+  doc["bodies"][0]["force_model"] = "paper";
+  doc["bodies"][0]["poisson"] = 0.45;
+  const auto file = parse_case(doc.dump(), "kpa.json");
+  EXPECT_EQ(file.bodies[0].force_model, mat::ForceModel::Paper);
+  EXPECT_EQ(file.bodies[0].poisson, 0.45);
+  const json saved = to_json(file);
+  EXPECT_EQ(saved["bodies"][0]["force_model"], "paper");
+  EXPECT_EQ(saved["bodies"][0]["poisson"], 0.45);
+  // A more compressible tissue is softer under the pad.
+  json nu49 = base_case();
+  by_modulus(nu49);
+  EXPECT_LT(file.bodies[0].stiffness[5], parse_case(nu49.dump(), "nu49.json").bodies[0].stiffness[5]);
+}
 
 TEST(CaseFile, BaseCaseIsValidAndFits) {
   const auto file = parse_case(base_case().dump(), "case.json");

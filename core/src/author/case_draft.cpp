@@ -318,7 +318,15 @@ void CaseDraft::apply_stiffness_map(std::size_t b, const StiffnessMap& map, doub
     throw io::CaseError(source(), {{"/bodies/" + std::to_string(b) + "/stiffness", e.what()}});
   }
   begin_edit();
-  doc_["bodies"][b]["stiffness"] = grid.stiffness;
+  auto& body = doc_["bodies"][b];
+  // A map is authored in N/m: a body given by its modulus becomes one given by stiffness,
+  // keeping the force law it had (a modulus body's default is the calibrated one).
+  if (!grid.modulus.empty()) {
+    body.erase("modulus");
+    body.erase("poisson");
+    body["force_model"] = mat::to_string(grid.force_model);
+  }
+  body["stiffness"] = grid.stiffness;
 }
 
 std::string CaseDraft::title() const {

@@ -186,6 +186,22 @@ nlohmann::json preset_scoring(Preset preset) {
   return {{"light_max", kProstateLightMax}, {"deep_min", kProstateDeepMin}};
 }
 
+io::CaseFile make_modulus_slab(double width, double thickness, double modulus, mat::ForceModel model) {
+  PresetParams p = preset_defaults(Preset::Slab);
+  p.width = p.length = width;
+  p.thickness = thickness;
+  p.rows = p.cols = 13;
+  io::CaseFile file;
+  file.title = "slab of " + std::to_string(modulus / 1000.0) + " kPa";
+  file.bodies.push_back(make_preset_body(p));
+  nlohmann::json doc = io::to_json(file);
+  auto& body = doc["bodies"][0];
+  body.erase("stiffness");
+  body["modulus"] = std::vector<double>(body["radius"].size(), modulus);
+  body["force_model"] = mat::to_string(model);
+  return io::parse_case(doc.dump(), "slab in Pa");  // derives the stiffness from the modulus
+}
+
 io::CaseFile make_preset_case(const PresetParams& params, const std::string& title) {
   io::CaseFile file;
   file.title = title;

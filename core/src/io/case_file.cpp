@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "palpa/io/json_text.hpp"
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/score/thresholds.hpp"
 
 namespace palpa::io {
@@ -234,6 +235,50 @@ void read_support(const json& body, const std::string& base, Validator& v, mat::
   }
 }
 
+// "force_model": "paper" or "calibrated" (docs/case-format.md); absent: calibrated for a
+// body given by its modulus, paper for one given in N/m.
+void read_force_model(const json& body, const std::string& base, Validator& v, mat::BodyGrid& g) {
+  g.force_model = g.modulus.empty() ? mat::ForceModel::Paper : mat::ForceModel::Calibrated;
+  if (!body.contains("force_model")) return;
+  const json& m = body["force_model"];
+  if (m == "paper") {
+    g.force_model = mat::ForceModel::Paper;
+  } else if (m == "calibrated") {
+    g.force_model = mat::ForceModel::Calibrated;
+  } else {
+    v.add(base + "/force_model", "force_model must be \"paper\" or \"calibrated\", not " + brief(m));
+  }
+}
+
+// The tissue's material: "stiffness" in N/m per point (the paper's), or "modulus" in Pa
+// per point with an optional "poisson", from which the stiffness under a fingertip pad is
+// derived over the local thickness 2R (mat/layer_stiffness.hpp). Exactly one of the two.
+void read_tissue(const json& body, const std::string& base, std::size_t n, bool radius_ok, Validator& v,
+                 mat::BodyGrid& g) {
+  const bool by_stiffness = body.contains("stiffness");
+  const bool by_modulus = body.contains("modulus");
+  if (by_stiffness && by_modulus) {
+    v.add(base + "/modulus", "give the tissue as \"stiffness\" (N/m) or as \"modulus\" (Pa), not both");
+    return;
+  }
+  if (!by_modulus) {
+    if (!by_stiffness) v.add(base, "missing \"stiffness\" (N/m) or \"modulus\" (Pa)");
+    else read_channel(body, base, "stiffness", n, {0.0, L::kMaxStiffness, false, "N/m"}, true, v, g.stiffness);
+    read_force_model(body, base, v, g);
+    return;
+  }
+  bool good = read_channel(body, base, "modulus", n, {0.0, L::kMaxModulus, false, "Pa"}, true, v, g.modulus);
+  if (body.contains("poisson")) {
+    good = read_number(body["poisson"], base + "/poisson", "poisson", {0.0, L::kMaxPoisson, false, "(ratio)"}, v,
+                       g.poisson) && good;
+  }
+  read_force_model(body, base, v, g);
+  if (!good || !radius_ok) return;
+  const mat::LayerStiffnessTable layer(g.poisson, mat::kFingertipPadRadius);
+  g.stiffness.resize(n);
+  for (std::size_t k = 0; k < n; ++k) g.stiffness[k] = layer(g.modulus[k], 2.0 * g.radius[k]);
+}
+
 void read_body(const json& body, std::size_t index, std::set<std::string>& ids, Validator& v,
                std::vector<mat::BodyGrid>& bodies) {
   const std::string base = "/bodies/" + std::to_string(index);
@@ -264,7 +309,7 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   const auto n = static_cast<std::size_t>(g.rows * g.cols);
   const bool medial_ok = read_medial(body, base, n, v, g.medial);
   const bool radius_ok = read_channel(body, base, "radius", n, {0.0, L::kMaxRadius, false, "m"}, true, v, g.radius);
-  read_channel(body, base, "stiffness", n, {0.0, L::kMaxStiffness, false, "N/m"}, true, v, g.stiffness);
+  read_tissue(body, base, n, radius_ok, v, g);
   read_channel(body, base, "damping", n, {0.0, L::kMaxDamping, false, "N s/m"}, false, v, g.damping);
   read_channel(body, base, "mass", n, {0.0, L::kMaxMass, true, "kg"}, false, v, g.mass);
   if (radius_ok) check_boundary_radius(g, base, v);
@@ -438,6 +483,26 @@ CaseFile load_case(const std::filesystem::path& path) {
   return parse_case(text, path.string());
 }
 
+namespace {
+
+// A body's material as it was authored: its modulus (the stiffness is derived from it) or
+// its stiffness; the force model only where the file gave one or it is not the default.
+void write_tissue(const mat::BodyGrid& g, json& b) {
+  if (g.modulus.empty()) {
+    b.erase("modulus");
+    b.erase("poisson");
+    b["stiffness"] = g.stiffness;
+  } else {
+    b.erase("stiffness");
+    b["modulus"] = g.modulus;
+    if (b.contains("poisson") || g.poisson != 0.49) b["poisson"] = g.poisson;
+  }
+  const auto by_default = g.modulus.empty() ? mat::ForceModel::Paper : mat::ForceModel::Calibrated;
+  if (b.contains("force_model") || g.force_model != by_default) b["force_model"] = mat::to_string(g.force_model);
+}
+
+}  // namespace
+
 json to_json(const CaseFile& file) {
   json doc = file.document.is_object() ? file.document : json::object();
   doc["format"] = "palpa-case";
@@ -458,7 +523,7 @@ json to_json(const CaseFile& file) {
     b["cols"] = g.cols;
     b["medial"] = g.medial;
     b["radius"] = g.radius;
-    b["stiffness"] = g.stiffness;
+    write_tissue(g, b);
     if (g.damping.empty()) b.erase("damping"); else b["damping"] = g.damping;
     if (g.mass.empty()) b.erase("mass"); else b["mass"] = g.mass;
     bodies.push_back(std::move(b));

@@ -87,6 +87,7 @@ bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v,
 }
 
 const char* to_string(Support support) { return support == Support::Bottom ? "bottom" : "free"; }
+const char* to_string(ForceModel model) { return model == ForceModel::Calibrated ? "calibrated" : "paper"; }
 
 MatBody::MatBody(std::string id, Support support, std::vector<double> u, std::vector<double> v,
                  spline::BSplineSurface skeleton, spline::BSplineSurface top, spline::BSplineSurface bottom)

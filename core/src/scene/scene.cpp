@@ -57,7 +57,7 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       auto body = mat::MatBody::fit(file.bodies[k], options);
       contact::FootPointSearch search(body.skeleton());
       const auto bounds = bounds_of(body);
-      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}});
+      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}, file.bodies[k].force_model});
     } catch (const mat::FitError& e) {
       problems.push_back({"/bodies/" + std::to_string(k), std::string("cannot fit: ") + e.what()});
     }
@@ -154,7 +154,13 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
   state.held = result.body;
   if (result.body >= 0) {
     const SceneBody& sb = bodies_[static_cast<std::size_t>(result.body)];
-    result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, options.force);
+    if (sb.force_model == mat::ForceModel::Calibrated && options.force.shear) {
+      contact::ForceOptions normal_only = options.force;  // a few dozen bytes on the stack
+      normal_only.shear = false;
+      result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, normal_only);
+    } else {
+      result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, options.force);
+    }
   }
   return result;
 }

@@ -233,6 +233,29 @@ add("negative-stiffness.json", "/bodies/0/stiffness/4", "stiffness", True, "stif
     setitem(B + ["stiffness", MID], -1.0))
 add("stiffness-too-large.json", "/bodies/0/stiffness/4", "stiffness", True, "stiffness 2e9 N/m (limit 1e9)",
     setitem(B + ["stiffness", MID], 2e9))
+
+
+def by_modulus(c):
+    b = body(c)
+    del b["stiffness"]
+    b["modulus"] = [5000.0] * N
+
+
+def by_modulus_then(path, value):
+    def edit(c):
+        by_modulus(c)
+        setitem(path, value)(c)
+    return edit
+
+
+add("stiffness-and-modulus.json", "/bodies/0/modulus", "not both", True, "both stiffness (N/m) and modulus (Pa)",
+    setitem(B + ["modulus"], [5000.0] * N))
+add("negative-modulus.json", "/bodies/0/modulus/4", "modulus", True, "modulus -1 Pa",
+    by_modulus_then(B + ["modulus", MID], -1.0))
+add("poisson-too-large.json", "/bodies/0/poisson", "poisson", True, "Poisson's ratio 0.5 (limit 0.499)",
+    by_modulus_then(B + ["poisson"], 0.5))
+add("unknown-force-model.json", "/bodies/0/force_model", "force_model", True, "force_model \"hertz\"",
+    setitem(B + ["force_model"], "hertz"))
 add("negative-damping.json", "/bodies/0/damping/4", "damping", True, "damping -0.5 N s/m",
     with_arrays(damping=(0.5, -0.5)))
 add("damping-too-large.json", "/bodies/0/damping/4", "damping", True, "damping 2e7 N s/m (limit 1e7)",

@@ -61,6 +61,12 @@ nlohmann::json preset_scoring(Preset preset);
 /// editor can change the size later.
 io::CaseFile make_preset_case(const PresetParams& params, const std::string& title);
 
+/// A square slab on a rigid support, `width` (m) wide and `thickness` (m) thick at its
+/// centre, of uniform Young's modulus `modulus` (Pa): the layer of the finite-element
+/// reference curves (data/reference), for comparing Palpa's forces with them. 13 x 13
+/// points; `model` is written as the body's "force_model". Throws as make_preset_body.
+io::CaseFile make_modulus_slab(double width, double thickness, double modulus, mat::ForceModel model);
+
 /// {"name", "width", "length", "thickness", "stiffness", "rows", "cols"} and back;
 /// preset_from_json gives nothing for anything malformed.
 nlohmann::json to_json(const PresetParams& params);

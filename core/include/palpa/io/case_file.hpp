@@ -51,6 +51,8 @@ struct CaseLimits {
   static constexpr double kMaxCoordinate = 100.0;  // m
   static constexpr double kMaxRadius = 10.0;       // m
   static constexpr double kMaxStiffness = 1e9;     // N/m
+  static constexpr double kMaxModulus = 1e9;       // Pa (bone is about 1e10; soft tissue 1e2-1e6)
+  static constexpr double kMaxPoisson = 0.499;     // below 0.5: the bonded-layer factor needs nu < 1/2
   static constexpr double kMaxDamping = 1e7;       // N s/m
   static constexpr double kMaxMass = 1e3;          // kg
   static constexpr double kMaxTumourRadius = 1.0;  // m

@@ -14,6 +14,14 @@ namespace palpa::mat {
 enum class Support { Free, Bottom };
 const char* to_string(Support support);
 
+/// The force law a body's tissue follows (docs/model.md, section 3). Paper: the normal
+/// spring and the four shear springs of the paper's section 3.4, with the stiffness as
+/// authored in N/m. Calibrated: the normal spring alone, its stiffness derived from the
+/// tissue's Young's modulus by contact mechanics (layer_stiffness.hpp), which stays within
+/// a few per cent of finite-element tissue where the shear springs overshoot it.
+enum class ForceModel { Paper, Calibrated };
+const char* to_string(ForceModel model);
+
 struct BodyGrid {
   std::string id;
   Support support = Support::Free;
@@ -22,7 +30,10 @@ struct BodyGrid {
   /// Skeleton points (m), row-major: point (i, j) at index i*cols + j.
   std::vector<std::array<double, 3>> medial;
   std::vector<double> radius;     ///< m, one per point; 0 on the grid boundary
-  std::vector<double> stiffness;  ///< N/m
+  std::vector<double> stiffness;  ///< N/m; derived from `modulus` when the body gives that
+  std::vector<double> modulus;    ///< Pa, Young's modulus; empty: the body is authored in N/m
+  double poisson = 0.49;          ///< Poisson's ratio of a body given by `modulus`
+  ForceModel force_model = ForceModel::Paper;
   std::vector<double> damping;    ///< N s/m; empty: the default damping ratio applies
   std::vector<double> mass;       ///< kg; empty: the default mass applies
 

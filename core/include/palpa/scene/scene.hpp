@@ -26,6 +26,9 @@ struct SceneBody {
   contact::FootPointSearch search;
   Bounds bounds;
   std::vector<mat::Tumour> tumours;
+  /// Calibrated: the normal spring alone (its stiffness came from the tissue's modulus),
+  /// whatever ForceOptions::shear says; Paper: the shear springs as ForceOptions::shear says.
+  mat::ForceModel force_model = mat::ForceModel::Paper;
 };
 
 /// How far a tumour's sphere stays inside `body` (m): the smallest depth of its centre and
