@@ -18,9 +18,12 @@ include(CMakePackageConfigHelpers)
 set(PALPA_DATA_INSTALL_DIR ${CMAKE_INSTALL_DATADIR}/palpa)
 set(PALPA_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Palpa)
 
-# Bundled data: the cases (not the script that makes them) and the schema.
+# Bundled data: the cases (not the script that makes them), the schema and the reference curves.
 install(DIRECTORY data/cases/ DESTINATION ${PALPA_DATA_INSTALL_DIR}/cases FILES_MATCHING PATTERN "*.json")
 install(FILES data/schema/palpa-case.schema.json DESTINATION ${PALPA_DATA_INSTALL_DIR}/schema)
+# The finite-element reference curves that palpa-cli bench fidelity compares with.
+install(DIRECTORY data/reference/ DESTINATION ${PALPA_DATA_INSTALL_DIR}/reference
+        FILES_MATCHING PATTERN "*.csv" PATTERN "README.md")
 
 # Desktop menu entry and icon.
 install(FILES packaging/palpa.desktop DESTINATION ${CMAKE_INSTALL_DATADIR}/applications)

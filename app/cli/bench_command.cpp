@@ -4,6 +4,7 @@
 
 #include "bench_accuracy.hpp"
 #include "bench_dynamics.hpp"
+#include "bench_fidelity.hpp"
 #include "bench_suites.hpp"
 #include "bench_table1.hpp"
 #include "commands.hpp"
@@ -39,6 +40,15 @@ Command add_bench_command(CLI::App& parent) {
                       "largest deviation from the surface. Writes tessellation.csv and tessellation.png into --out.");
   tessellation->add_option("--case", *tess_case, "case file; default the bundled default.json");
   tessellation->add_option("--out", *tess_out, "output folder; default bench-results");
+  auto fid_out = std::make_shared<std::string>("bench-results");
+  auto fid_ref = std::make_shared<std::string>();
+  auto* fidelity = app->add_subcommand(
+      "fidelity", "Forces against the finite-element reference curves (data/reference: a 7.5 mm flat pad on 20 and "
+                  "40 mm layers of 5 kPa on a rigid base, linear and neo-Hookean): the worst force error of the "
+                  "calibrated law and of the paper's law up to each curve's reach. Writes fidelity.csv and "
+                  "fidelity.png into --out; exit 1 if the calibrated law is more than 10 % off a curve.");
+  fidelity->add_option("--reference", *fid_ref, "folder of the reference CSVs; default the data folder's reference/");
+  fidelity->add_option("--out", *fid_out, "output folder; default bench-results");
   auto t1 = std::make_shared<Table1Options>();
   auto t1_csv = std::make_shared<std::string>();
   auto* table1 = app->add_subcommand(
@@ -55,7 +65,20 @@ Command add_bench_command(CLI::App& parent) {
   table1->add_option("--display-span", t1->display_span,
                      "m: knot spans of the drawn surfaces (display refinement); 0 draws the fitted nets; default 0.004")
       ->check(CLI::Range(0.0, 1.0));
-  return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv] {
+  return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv, fidelity,
+               fid_out, fid_ref] {
+            if (fidelity->parsed()) {
+              std::filesystem::path reference = *fid_ref;
+              if (reference.empty()) {
+                try {
+                  reference = io::find_data_dir(io::this_process_data_search()) / "reference";
+                } catch (const io::DataDirError& e) {
+                  std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
+                  return static_cast<int>(kBadInput);
+                }
+              }
+              return run_bench_fidelity(reference, *fid_out);
+            }
             if (table1->parsed()) {
               if (!t1_csv->empty()) t1->csv = *t1_csv;
               return run_bench_table1(*t1);

@@ -1,11 +1,13 @@
 // Fitting cost: a MAT body (skeleton + both contours) for grids of several sizes, and a
 // whole scene of 35 bodies / 927 MAT points (the largest scene of the paper's Table 1,
-// which took 56 s to preprocess there).
+// which took 56 s to preprocess there); and loading a body given in N/m or in Pa (whose
+// stiffness is derived from its modulus by contact mechanics).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <vector>
 
+#include "palpa/io/case_file.hpp"
 #include "palpa/mat/fit_residual.hpp"
 #include "palpa/mat/mat_body.hpp"
 
@@ -94,6 +96,23 @@ void BM_FitScene927(benchmark::State& state) {
   state.counters["memory_bytes"] = static_cast<double>(memory);
 }
 BENCHMARK(BM_FitScene927)->Unit(benchmark::kMillisecond);
+
+// parse_case of one dome body of n x n points, authored in N/m (arg 1 = 0) or in Pa (1).
+void BM_ParseCase(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  palpa::io::CaseFile file;
+  file.title = "dome";
+  file.bodies.push_back(dome_body(n, n, 0.0));
+  nlohmann::json doc = palpa::io::to_json(file);
+  if (state.range(1) == 1) {
+    auto& body = doc["bodies"][0];
+    body.erase("stiffness");
+    body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
+  }
+  const std::string text = doc.dump();
+  for (auto _ : state) benchmark::DoNotOptimize(palpa::io::parse_case(text, "dome.json"));
+}
+BENCHMARK(BM_ParseCase)->ArgsProduct({{13, 72}, {0, 1}})->ArgNames({"n", "kPa"})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""palpa-cli bench accuracy, dynamics and tessellation, end to end: each runs a small
-configuration and its CSV figures are checked against properties that must hold (the
-fast foot point at round-off, the exact integrator exact, tessellation within tolerance).
+"""palpa-cli bench accuracy, dynamics, tessellation and fidelity, end to end: each runs a
+small configuration and its CSV figures are checked against properties that must hold (the
+fast foot point at round-off, the exact integrator exact, tessellation within tolerance,
+the calibrated force within 10 % of the committed finite-element curves).
 
 Run: python3 tests/cli/test_bench_cli.py --cli build/release/app/palpa-cli --repo .
 (Not run in the sanitizer build: the benchmarks exercise the same core code as the unit
@@ -94,6 +95,40 @@ class BenchTessellation(unittest.TestCase):
             res = run(["bench", "tessellation", "--case", os.path.join(d, "missing.json"), "--out", d])
             self.assertEqual(res.returncode, 2)
             self.assertIn("missing.json", res.stderr)
+
+
+class BenchFidelity(unittest.TestCase):
+    def test_calibrated_law_is_within_ten_percent_of_every_reference_and_the_papers_is_not(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_fid_") as d:
+            res = run(["bench", "fidelity", "--out", d], timeout=300)
+            self.assertEqual(res.returncode, 0, res.stdout + res.stderr)
+            with open(os.path.join(d, "fidelity.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual(list(rows[0].keys()), ["reference", "law", "thickness_m", "depth_m", "depth_share",
+                                                    "fem_n", "palpa_n", "error"])
+            refs = {r["reference"] for r in rows}
+            self.assertIn("slab40_E5k_flat_neohooke.csv", refs)
+            self.assertIn("slab20_E5k_flat_linear.csv", refs)
+            with open(os.path.join(REPO, "data", "reference", "slab40_E5k_flat_neohooke.csv")) as fh:
+                fem = {float(r["depth_m"]): float(r["force_n"]) for r in csv.DictReader(fh)}
+            for r in rows:
+                # The error column is what the two force columns say, against the committed file.
+                self.assertAlmostEqual(float(r["error"]), float(r["palpa_n"]) / float(r["fem_n"]) - 1.0, places=4)
+                if r["reference"] == "slab40_E5k_flat_neohooke.csv":
+                    self.assertAlmostEqual(float(r["fem_n"]), fem[float(r["depth_m"])], places=5)
+                if r["law"] == "calibrated":
+                    self.assertLessEqual(abs(float(r["error"])), 0.10, r)
+            paper_10 = [r for r in rows if r["law"] == "paper" and r["reference"] == "slab40_E5k_flat_neohooke.csv"
+                        and abs(float(r["depth_m"]) - 0.004) < 1e-9]
+            self.assertEqual(len(paper_10), 1)
+            self.assertGreater(float(paper_10[0]["error"]), 0.10)  # the shear springs overshoot
+            with open(os.path.join(d, "fidelity.png"), "rb") as fh:
+                self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+            # A folder without the curves: one line naming the file, exit 2.
+            res = run(["bench", "fidelity", "--reference", d, "--out", d])
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("slab40_E5k_flat_neohooke.csv", res.stderr)
+            self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
 
 
 def main():

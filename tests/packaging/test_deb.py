@@ -94,6 +94,7 @@ class Deb(unittest.TestCase):
         expected = [
             "bin/palpa-cli",
             "share/palpa/schema/palpa-case.schema.json",
+            "share/palpa/reference/slab40_E5k_flat_neohooke.csv", "share/palpa/reference/README.md",
             "share/applications/palpa.desktop",
             "share/icons/hicolor/scalable/apps/palpa.svg",
             "lib/udev/rules.d/70-palpa.rules",
