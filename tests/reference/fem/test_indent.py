@@ -165,6 +165,53 @@ class SphereTest(unittest.TestCase):
         self.assertLess(abs(exponent - 1.5), 0.1)
 
 
+@unittest.skipUnless(HAVE_FEM, "gmsh/ccx or numpy missing")
+class ContrastSweepTest(unittest.TestCase):
+    """The committed on-axis contrast sweep (data/reference/contrast_slab40_E5k_linear.csv)."""
+
+    @classmethod
+    def setUpClass(cls):
+        path = os.path.join(HERE, "..", "..", "..", "data", "reference", "contrast_slab40_E5k_linear.csv")
+        with open(path) as f:
+            cls.rows = list(csv.DictReader(f))
+
+    def row(self, radius, depth, ratio):
+        for r in self.rows:
+            if (abs(float(r["inclusion_radius_m"]) - radius) < 1e-9 and abs(float(r["inclusion_depth_m"]) - depth) < 1e-9
+                    and float(r["modulus_ratio"]) == ratio):
+                return r
+        self.fail(f"no row for r={radius} s={depth} q={ratio}")
+
+    def test_one_point_agrees_with_the_committed_inclusion_curves_and_a_fresh_solve(self):
+        ref = os.path.join(HERE, "..", "..", "..", "data", "reference")
+        with open(os.path.join(ref, "slab40_E5k_flat_linear_incl5x.csv")) as f5, \
+                open(os.path.join(ref, "slab40_E5k_flat_linear_incl1x.csv")) as f1:
+            curve = float(list(csv.DictReader(f5))[-1]["force_n"]) / float(list(csv.DictReader(f1))[-1]["force_n"])
+        committed = float(self.row(0.005, 0.010, 5.0)["contrast"])
+        self.assertLess(abs(committed / curve - 1.0), 1e-3)  # linear: the same at every press depth
+        args = ("--thickness", 0.04, "--modulus", E, "--poisson", NU, "--inclusion-radius", 0.003,
+                "--inclusion-depth", 0.015, "--max-depth", 5e-4, "--steps", 1)
+        stiff, _ = run_indent(*args, "--inclusion-ratio", 10)
+        twin, _ = run_indent(*args, "--inclusion-ratio", 1)
+        self.assertLess(abs(stiff[-1][1] / twin[-1][1] - float(self.row(0.003, 0.015, 10.0)["contrast"])), 1e-4)
+
+    def test_contrast_grows_with_size_and_ratio_and_fades_with_depth(self):
+        for r in self.rows:
+            self.assertGreater(float(r["contrast"]), 1.0, r)
+        for radius in (0.003, 0.005, 0.010):
+            for depth in (0.010, 0.015, 0.020, 0.025):
+                cs = [self.row(radius, depth, q) for q in (3.0, 5.0, 10.0)
+                      if any(abs(float(x["inclusion_radius_m"]) - radius) < 1e-9
+                             and abs(float(x["inclusion_depth_m"]) - depth) < 1e-9 for x in self.rows)]
+                values = [float(c["contrast"]) for c in cs]
+                self.assertEqual(values, sorted(values), f"r={radius} s={depth}")
+        for q in (3.0, 5.0, 10.0):
+            deeper = [float(self.row(0.005, s, q)["contrast"]) for s in (0.010, 0.015, 0.020, 0.025)]
+            self.assertEqual(deeper, sorted(deeper, reverse=True))
+            bigger = [float(self.row(r, 0.015, q)["contrast"]) for r in (0.003, 0.005, 0.010)]
+            self.assertEqual(bigger, sorted(bigger))
+
+
 @unittest.skipUnless(HAVE_NUMPY, "numpy missing")
 class CommandLineTest(unittest.TestCase):
 
