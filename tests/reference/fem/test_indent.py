@@ -212,6 +212,31 @@ class ContrastSweepTest(unittest.TestCase):
             self.assertEqual(bigger, sorted(bigger))
 
 
+try:
+    import scipy  # noqa: F401
+    HAVE_SCIPY = True
+except ImportError:  # pragma: no cover - depends on the machine
+    HAVE_SCIPY = False
+
+
+@unittest.skipUnless(HAVE_NUMPY and HAVE_SCIPY, "numpy or scipy missing")
+class ContrastFitTest(unittest.TestCase):
+    """tools/fem/fit_contrast.py: the reduced contrast model against the sweep."""
+
+    def test_the_model_predicts_every_inclusion_left_out_within_ten_percent(self):
+        import numpy as np
+        import fit_contrast
+        with open(fit_contrast.DATA) as f:
+            rows = list(csv.DictReader(f))
+        cols = [np.array([float(x[k]) for x in rows])
+                for k in ("inclusion_radius_m", "inclusion_depth_m", "modulus_ratio", "contrast")]
+        self.assertLess(fit_contrast.leave_one_out(*cols), 0.10)
+        theta = fit_contrast.fit(*cols)
+        # No contrast without a contrast in modulus, and a stiffer inclusion is felt more.
+        self.assertAlmostEqual(math.exp(fit_contrast.log_extra(theta, 0.005, 0.010, 1.0 + 1e-12)), 0.0, places=9)
+        self.assertLess(fit_contrast.log_extra(theta, 0.005, 0.010, 3.0), fit_contrast.log_extra(theta, 0.005, 0.010, 10.0))
+
+
 @unittest.skipUnless(HAVE_NUMPY, "numpy missing")
 class CommandLineTest(unittest.TestCase):
 
