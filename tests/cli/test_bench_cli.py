@@ -122,6 +122,13 @@ class BenchFidelity(unittest.TestCase):
                         and abs(float(r["depth_m"]) - 0.004) < 1e-9]
             self.assertEqual(len(paper_10), 1)
             self.assertGreater(float(paper_10[0]["error"]), 0.10)  # the shear springs overshoot
+            with open(os.path.join(d, "fidelity_contrast.csv")) as fh:
+                contrast = list(csv.DictReader(fh))
+            with open(os.path.join(REPO, "data", "reference", "contrast_slab40_E5k_linear.csv")) as fh:
+                self.assertEqual(len(contrast), len(list(csv.DictReader(fh))))
+            for r in contrast:
+                fem, model = float(r["fem_contrast"]), float(r["calibrated_contrast"])
+                self.assertLessEqual(abs(model - fem), max(0.2 * (fem - 1.0), 0.02), r)
             with open(os.path.join(d, "fidelity.png"), "rb") as fh:
                 self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
             # A folder without the curves: one line naming the file, exit 2.

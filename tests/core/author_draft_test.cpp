@@ -307,6 +307,28 @@ TEST(AuthorDraft, AStiffnessMapOnABodyInKpaKeepsItsForceLaw) {
   EXPECT_TRUE(draft.validate().empty());
 }
 
+TEST(AuthorDraft, ATumourInPaIsListedAndAnEditInTheWindowWritesItInNm) {
+  CaseDraft preset(preset_defaults(Preset::Slab));
+  auto doc = preset.document();
+  auto& body = doc["bodies"][0];
+  body.erase("stiffness");
+  body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
+  const SurfacePoint centre = pick_top(preset, 0.0, 0.0);
+  doc["tumors"] = nlohmann::json::array(
+      {{{"body", body["id"]}, {"center", {centre.point[0], centre.point[1], centre.point[2] - 0.01}},
+        {"radius", 0.005}, {"modulus", 25000.0}}});
+  CaseDraft draft = CaseDraft::from_document(doc, "kpa.json");
+  ASSERT_TRUE(draft.validate().empty());
+  const auto t = draft.tumour(0);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_EQ(t->modulus, 25000.0);
+  EXPECT_EQ(t->stiffness, 0.0);
+  draft.edit_tumour(0, TumourSpec{0.010, 0.004, 2000.0});
+  EXPECT_FALSE(draft.document()["tumors"][0].contains("modulus"));
+  EXPECT_EQ(draft.document()["tumors"][0]["stiffness"], 2000.0);
+  EXPECT_TRUE(draft.validate().empty());
+}
+
 // A body change keeps the tumour where it is and measures its depth to the new skin: the
 // breast's apex 50 mm high with a tumour 10 mm below it; 60 mm thick, the reported depth is
 // the distance from the (unmoved) centre up to the new apex, picked independently (about

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -169,6 +170,129 @@ TEST(TissueInKpa, ThePapersShearSpringsOvershootTheSameLayer) {
     std::printf("%8.0f | %17.4f | %12.4f | %12.4f | %13.4f\n", d * 1e3, nonlinear,
                 reference_force("slab40_E5k_flat_linear.csv", d), centre_press(calibrated, d), centre_press(paper, d));
   }
+}
+
+}  // namespace
+}  // namespace palpa::scene
+
+namespace palpa::scene {
+namespace {
+
+// The slab of the reference with one tumour in Pa on the axis under its centre.
+io::CaseFile slab_with_tumour(double radius, double below_skin, double ratio) {
+  io::CaseFile file = slab_in_kpa(5000.0, mat::ForceModel::Calibrated);
+  const auto scene = Scene::build(file, "slab.json");
+  std::array<double, 3> top{};
+  scene.body(0).body.top().evaluate(0.5, 0.5, top);
+  mat::Tumour t;
+  t.body = file.bodies[0].id;
+  t.center = {top[0], top[1], top[2] - below_skin};
+  t.radius = radius;
+  t.modulus = ratio * 5000.0;
+  file.tumours.push_back(t);
+  return io::parse_case(io::to_json(file).dump(), "slab-tumour.json");
+}
+
+struct SweepRow {
+  double radius, depth, ratio, contrast;
+};
+
+std::vector<SweepRow> contrast_sweep() {
+  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/reference/contrast_slab40_E5k_linear.csv");
+  std::string line;
+  std::getline(in, line);
+  std::vector<SweepRow> rows;
+  while (std::getline(in, line)) {
+    SweepRow r{};
+    double force = 0.0, twin = 0.0;
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &r.radius, &r.depth, &r.ratio, &force, &twin,
+                    &r.contrast) == 6) {
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+TEST(TissueInKpa, ATumourInPaIsFeltWithTheFemsContrast) {
+  // Every inclusion of the on-axis FEM sweep (data/reference): the force with the tumour over
+  // the force without, at a 2 mm press, within 20 % of C - 1 or 0.02 (the mark).
+  const auto plain = Scene::build(slab_in_kpa(5000.0, mat::ForceModel::Calibrated), "slab.json");
+  const auto rows = contrast_sweep();
+  ASSERT_EQ(rows.size(), 33u);
+  double worst = 0.0;
+  for (const auto& r : rows) {
+    const auto scene = Scene::build(slab_with_tumour(r.radius, r.depth, r.ratio), "slab-tumour.json");
+    ASSERT_NEAR(scene.body(0).tumours.at(0).modulus_ratio, r.ratio, 1e-12);
+    const double c = centre_press(scene, 0.002) / centre_press(plain, 0.002);
+    const double error = std::abs(c - r.contrast);
+    EXPECT_LE(error, std::max(0.20 * (r.contrast - 1.0), 0.02))
+        << "r " << r.radius << " s " << r.depth << " q " << r.ratio << ": " << c << " against " << r.contrast;
+    worst = std::max(worst, error / (r.contrast - 1.0));
+    // Linear in the press, like the FEM's: the same contrast at 0.5 and 6 mm.
+    EXPECT_NEAR(centre_press(scene, 0.006) / centre_press(plain, 0.006), c, 1e-9);
+  }
+  std::printf("tumour contrast against the FEM sweep: worst error %.1f %% of C - 1\n", 100.0 * worst);
+}
+
+TEST(TissueInKpa, ATumourInPaFadesSmoothlyBesideTheFinger) {
+  // A slide across a 10 mm tumour 15 mm deep at a 3 mm press: the force changes by small
+  // steps (C1 falloff, nothing for a device to buzz on) and is the plain layer's once the
+  // finger is a pad radius beyond the tumour's rim.
+  const auto scene = Scene::build(slab_with_tumour(0.010, 0.015, 5.0), "slab-tumour.json");
+  const auto plain = Scene::build(slab_in_kpa(5000.0, mat::ForceModel::Calibrated), "slab.json");
+  auto state = scene.make_state();
+  auto plain_state = plain.make_state();
+  std::array<double, 3> top{};
+  scene.body(0).body.top().evaluate(0.5, 0.5, top);
+  std::vector<double> f;
+  for (int k = 0; k <= 300; ++k) {
+    const double x = -0.03 + 0.0002 * k;
+    const Vec3 q(top[0] + x, top[1], top[2] - 0.003);
+    f.push_back(scene.probe(q, state, {}).force.total.norm());
+    if (std::abs(x) > 0.010 + 0.0075 + 0.001) {
+      EXPECT_NEAR(f.back(), plain.probe(q, plain_state, {}).force.total.norm(), 1e-9) << x;
+    }
+  }
+  const double peak = *std::max_element(f.begin(), f.end());
+  EXPECT_GT(peak, 1.3 * f.front()) << "the tumour is felt over it";
+  double largest_step = 0.0, largest_bend = 0.0;
+  for (std::size_t k = 2; k < f.size(); ++k) {
+    largest_step = std::max(largest_step, std::abs(f[k] - f[k - 1]));
+    largest_bend = std::max(largest_bend, std::abs(f[k] - 2.0 * f[k - 1] + f[k - 2]));
+  }
+  EXPECT_LT(largest_step, 0.03 * peak) << "per 0.2 mm";
+  // C1: the slope never turns at once (a kink would bend by about a whole step).
+  EXPECT_LT(largest_bend, 0.25 * largest_step);
+  std::printf("slide across a 10 mm, 5x tumour 15 mm deep: peak %.3f N (%.2fx the plain layer), largest step %.4f N "
+              "per 0.2 mm, largest bend %.2f of a step\n",
+              peak, peak / f.front(), largest_step, largest_bend / largest_step);
+}
+
+TEST(TissueInKpa, ATumourInPaNeedsItsBodyInPa) {
+  io::CaseFile file = slab_with_tumour(0.005, 0.010, 5.0);
+  nlohmann::json doc = io::to_json(file);
+  auto& body = doc["bodies"][0];
+  body.erase("modulus");
+  body["stiffness"] = std::vector<double>(body["radius"].size(), 120.0);
+  try {
+    (void)Scene::build(io::parse_case(doc.dump(), "mixed.json"), "mixed.json");
+    ADD_FAILURE() << "a tumour in Pa in a body in N/m was accepted";
+  } catch (const io::CaseError& e) {
+    EXPECT_EQ(e.problems().front().where, "/tumors/0/modulus");
+  }
+  doc = io::to_json(file);
+  doc["tumors"][0]["stiffness"] = 2000.0;
+  try {
+    (void)io::parse_case(doc.dump(), "both.json");
+    ADD_FAILURE() << "a tumour with both stiffness and modulus was accepted";
+  } catch (const io::CaseError& e) {
+    EXPECT_EQ(e.problems().front().where, "/tumors/0/modulus");
+    EXPECT_NE(e.problems().front().reason.find("not both"), std::string::npos);
+  }
+  // Saved as authored.
+  const auto saved = io::to_json(file);
+  EXPECT_EQ(saved["tumors"][0]["modulus"], 25000.0);
+  EXPECT_FALSE(saved["tumors"][0].contains("stiffness"));
 }
 
 }  // namespace

@@ -288,7 +288,8 @@ void CaseDraft::edit_tumour(std::size_t k, const TumourSpec& spec) {
     t["anchor"] = {{"point", where->point}, {"normal", n}};
   }
   t["radius"] = spec.radius;
-  t["stiffness"] = spec.stiffness;
+  t["stiffness"] = spec.stiffness;  // the window authors tumours in N/m: one in Pa becomes one in N/m
+  t.erase("modulus");
 }
 
 void CaseDraft::remove_tumour(std::size_t k) {
@@ -350,11 +351,12 @@ std::optional<mat::Tumour> CaseDraft::tumour(std::size_t k) const {
   mat::Tumour out;
   if (t.contains("body") && t["body"].is_string()) out.body = t["body"].get<std::string>();
   const auto c = t.contains("center") ? read_vec3(t["center"]) : std::nullopt;
-  const auto r = read_number(t, "radius"), s = read_number(t, "stiffness");
-  if (!c || !r || !s) return std::nullopt;
+  const auto r = read_number(t, "radius"), s = read_number(t, "stiffness"), e = read_number(t, "modulus");
+  if (!c || !r || (!s && !e)) return std::nullopt;
   out.center = *c;
   out.radius = *r;
-  out.stiffness = *s;
+  out.stiffness = s.value_or(0.0);
+  out.modulus = s ? 0.0 : *e;
   return out;
 }
 

@@ -68,6 +68,36 @@ double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& ou
   return weight * tumour.stiffness * smooth_ramp(depth - feel.reach * above, feel.ramp);
 }
 
+double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model) {
+  if (!(q > 1.0) || !(h > 0.0) || !(r > 0.0)) return 0.0;
+  const double a = model.pad_radius;
+  const double gap = std::max(s - r, 0.05 * h);  // the fit's domain: 5 % of the layer at least
+  return model.a_scale * (q - 1.0) / (q + model.ratio_knee) * std::pow(r / a, model.size_power) *
+         std::exp(-model.depth_decay * std::max(s, 0.0) / h) * std::pow(gap / a, -model.gap_power);
+}
+
+namespace {
+
+// A tumour given in Pa: the extra force along the way out is C - 1 times the normal
+// spring's, so it grows with the press from 0 like the tissue's own (no onset to buzz on)
+// and fades beside the pad's axis as the spring model's does.
+double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, const ForceOptions& options) {
+  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
+  const double height = to_center.dot(contact.outward);                 // centre above the foot point
+  const double lateral = (to_center - height * contact.outward).norm();  // and beside the column
+  double weight = 1.0;
+  if (lateral > tumour.radius) {
+    const double x = (lateral - tumour.radius) / options.contrast.pad_radius;
+    weight = x >= 1.0 ? 0.0 : 1.0 - x * x * (3.0 - 2.0 * x);
+  }
+  if (weight <= 0.0) return 0.0;
+  const double below_skin = contact.radius - height;  // the skin is R above the foot point
+  return weight * normal *
+         tumour_contrast(tumour.radius, below_skin, tumour.modulus_ratio, 2.0 * contact.radius, options.contrast);
+}
+
+}  // namespace
+
 Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3& q,
                     std::span<const mat::Tumour> tumours, const ForceOptions& options) {
   Force f;
@@ -83,8 +113,11 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
     f.shear = shear_force(body, contact, at, options.shear_delta);
   }
   double tumour = 0.0;
+  const double normal = contact.stiffness * tissue;
   for (const auto& t : tumours) {
-    tumour += tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue, options.tumour);
+    tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, options)
+                                    : tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue,
+                                                    options.tumour);
   }
   f.tumour = tumour * contact.outward;
   if (anchored) f.support = options.support_stiffness * contact.support_depth * contact.outward;

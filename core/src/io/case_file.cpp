@@ -387,8 +387,14 @@ void read_tumour(const json& t, std::size_t index, const std::set<std::string>& 
   } else {
     read_number(t["radius"], base + "/radius", "radius", {0.0, L::kMaxTumourRadius, true, "m"}, v, tumour.radius);
   }
-  if (!t.contains("stiffness")) {
-    v.add(base, "missing \"stiffness\"");
+  // Its material: "stiffness" in N/m (the spring model) or "modulus" in Pa (the contrast
+  // model, for a tumour in a body given by its modulus; Scene::build checks that).
+  if (t.contains("stiffness") && t.contains("modulus")) {
+    v.add(base + "/modulus", "give the tumour as \"stiffness\" (N/m) or as \"modulus\" (Pa), not both");
+  } else if (t.contains("modulus")) {
+    read_number(t["modulus"], base + "/modulus", "modulus", {0.0, L::kMaxModulus, true, "Pa"}, v, tumour.modulus);
+  } else if (!t.contains("stiffness")) {
+    v.add(base, "missing \"stiffness\" (N/m) or \"modulus\" (Pa)");
   } else {
     read_number(t["stiffness"], base + "/stiffness", "stiffness", {0.0, L::kMaxStiffness, false, "N/m"}, v,
                 tumour.stiffness);
@@ -538,7 +544,13 @@ json to_json(const CaseFile& file) {
       o["body"] = t.body;
       o["center"] = t.center;
       o["radius"] = t.radius;
-      o["stiffness"] = t.stiffness;
+      if (t.modulus > 0.0) {
+        o.erase("stiffness");
+        o["modulus"] = t.modulus;
+      } else {
+        o.erase("modulus");
+        o["stiffness"] = t.stiffness;
+      }
       tumours.push_back(std::move(o));
     }
     doc["tumors"] = std::move(tumours);

@@ -1,6 +1,8 @@
 #include "palpa/scene/scene.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -48,6 +50,26 @@ double tumour_clearance(const mat::MatBody& body, const contact::FootPointSearch
   return worst;
 }
 
+namespace {
+
+// Pa: the tissue's modulus at the skeleton point nearest to `centre` (0 for a body in N/m).
+double modulus_around(const mat::BodyGrid& grid, const std::array<double, 3>& centre) {
+  if (grid.modulus.empty()) return 0.0;
+  std::size_t nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < grid.medial.size(); ++k) {
+    const auto& m = grid.medial[k];
+    const double d = std::hypot(m[0] - centre[0], m[1] - centre[1], m[2] - centre[2]);
+    if (d < best) {
+      best = d;
+      nearest = k;
+    }
+  }
+  return grid.modulus[nearest];
+}
+
+}  // namespace
+
 Scene Scene::build(const io::CaseFile& file, const std::string& source, const mat::FitOptions& options) {
   Scene scene;
   scene.bodies_.reserve(file.bodies.size());
@@ -86,7 +108,19 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       problems.push_back({"/tumors/" + std::to_string(k), text});
       continue;
     }
-    it->tumours.push_back(t);
+    mat::Tumour placed = t;
+    if (t.modulus > 0.0) {
+      const auto& grid = file.bodies[static_cast<std::size_t>(it - scene.bodies_.begin())];
+      const double around = modulus_around(grid, t.center);
+      if (!(around > 0.0)) {
+        problems.push_back({"/tumors/" + std::to_string(k) + "/modulus",
+                            "a tumour given by its modulus (Pa) needs its body \"" + t.body +
+                                "\" given by \"modulus\" too, with tissue stiffer than 0 Pa around it"});
+        continue;
+      }
+      placed.modulus_ratio = t.modulus / around;
+    }
+    it->tumours.push_back(placed);
   }
   if (!problems.empty()) throw io::CaseError(source, std::move(problems));
   return scene;

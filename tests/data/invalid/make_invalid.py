@@ -254,6 +254,10 @@ add("negative-modulus.json", "/bodies/0/modulus/4", "modulus", True, "modulus -1
     by_modulus_then(B + ["modulus", MID], -1.0))
 add("poisson-too-large.json", "/bodies/0/poisson", "poisson", True, "Poisson's ratio 0.5 (limit 0.499)",
     by_modulus_then(B + ["poisson"], 0.5))
+add("tumour-stiffness-and-modulus.json", "/tumors/0/modulus", "not both", True,
+    "a tumour with both stiffness (N/m) and modulus (Pa)",
+    setitem(["tumors"], [{"body": "b0", "center": [0, 0, 0.005], "radius": 0.002, "stiffness": 1000,
+                          "modulus": 20000}]))
 add("unknown-force-model.json", "/bodies/0/force_model", "force_model", True, "force_model \"hertz\"",
     setitem(B + ["force_model"], "hertz"))
 add("negative-damping.json", "/bodies/0/damping/4", "damping", True, "damping -0.5 N s/m",

@@ -18,6 +18,30 @@ struct TumourFeel {
   double pad_radius = 7.5e-3;  ///< m, fingertip pad radius: lateral reach beyond the tumour
 };
 
+/// How a tumour given in Pa is felt (docs/model.md, "Tumours in Pa"): it adds C - 1 times
+/// the normal force, C the contrast a finite-element model gives for a stiff sphere of
+/// radius r, centre s below the skin and modulus q times the tissue's, under a flat pad of
+/// radius a on a layer of thickness h over a rigid base:
+///
+///     C - 1 = A (q - 1) / (q + g) (r / a)^m exp(-b s / h) (max(s - r, h / 20) / a)^(-c)
+///
+/// fitted to the on-axis FEM sweep of data/reference (tools/fem/fit_contrast.py: within
+/// 5.7 % of C - 1 on 33 inclusions). Beside the pad's axis the contrast fades with the
+/// same C1 falloff as the spring model's (over one pad radius beyond the tumour's rim),
+/// which no finite-element curve checks yet.
+struct TumourContrast {
+  double a_scale = 1.852;   ///< A
+  double ratio_knee = 1.625;  ///< g: (q - 1) / (q + g) saturates for a rigid sphere
+  double size_power = 3.038;  ///< m: about the inclusion's volume
+  double depth_decay = 5.487; ///< b, per layer thickness
+  double gap_power = 0.063;   ///< c: the tissue between the tumour's top and the skin
+  double pad_radius = 7.5e-3; ///< m, a
+};
+
+/// C - 1 for a tumour of radius r, centre s below the skin, modulus ratio q, in tissue of
+/// local thickness h, on the pad's axis (q <= 1 or a degenerate layer: 0).
+double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model = {});
+
 struct ForceOptions {
   bool shear = true;          ///< the four shear springs of section 3.4
   double shear_delta = 0.1;   ///< their offset in parameter space (docs/model.md: why 0.1)
@@ -28,6 +52,7 @@ struct ForceOptions {
   /// docs/model.md, "Bodies on a support".
   double support_stiffness = 2000.0;
   TumourFeel tumour{};
+  TumourContrast contrast{};
 };
 
 struct Force {
