@@ -44,6 +44,26 @@ Vec3 shear_force(const mat::MatBody& body, const Contact& c, const Vec3& q, doub
   return total;
 }
 
+// Where a tumour is for the pad over a foot point: its centre's height above the foot along
+// the way out, and the weight of its force by how far it lies beside the column (1 within
+// its radius, falling C1 to 0 one pad radius beyond its rim).
+struct TumourPlace {
+  double height;
+  double weight;
+};
+
+TumourPlace place_of(const mat::Tumour& tumour, const Vec3& foot, const Vec3& outward, double pad_radius) {
+  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - foot;
+  const double height = to_center.dot(outward);
+  const double lateral = (to_center - height * outward).norm();
+  double weight = 1.0;
+  if (lateral > tumour.radius) {
+    const double x = (lateral - tumour.radius) / pad_radius;
+    weight = x >= 1.0 ? 0.0 : 1.0 - x * x * (3.0 - 2.0 * x);
+  }
+  return {height, weight};
+}
+
 // C1 onset: 0 below 0, a parabola across [0, width], then linear with slope 1.
 double smooth_ramp(double e, double width) {
   if (e <= 0.0) return 0.0;
@@ -55,14 +75,7 @@ double smooth_ramp(double e, double width) {
 
 double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& outward, double radius, double depth,
                      const TumourFeel& feel) {
-  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - foot;
-  const double height = to_center.dot(outward);                 // tumour centre above the foot point
-  const double lateral = (to_center - height * outward).norm();  // and beside the column
-  double weight = 1.0;
-  if (lateral > tumour.radius) {
-    const double x = (lateral - tumour.radius) / feel.pad_radius;
-    weight = x >= 1.0 ? 0.0 : 1.0 - x * x * (3.0 - 2.0 * x);
-  }
+  const auto [height, weight] = place_of(tumour, foot, outward, feel.pad_radius);
   if (weight <= 0.0) return 0.0;
   const double above = radius - height - tumour.radius;  // tissue between the surface and the tumour
   return weight * tumour.stiffness * smooth_ramp(depth - feel.reach * above, feel.ramp);
@@ -82,14 +95,7 @@ namespace {
 // spring's, so it grows with the press from 0 like the tissue's own (no onset to buzz on)
 // and fades beside the pad's axis as the spring model's does.
 double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, const ForceOptions& options) {
-  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
-  const double height = to_center.dot(contact.outward);                 // centre above the foot point
-  const double lateral = (to_center - height * contact.outward).norm();  // and beside the column
-  double weight = 1.0;
-  if (lateral > tumour.radius) {
-    const double x = (lateral - tumour.radius) / options.contrast.pad_radius;
-    weight = x >= 1.0 ? 0.0 : 1.0 - x * x * (3.0 - 2.0 * x);
-  }
+  const auto [height, weight] = place_of(tumour, contact.foot.point, contact.outward, options.contrast.pad_radius);
   if (weight <= 0.0) return 0.0;
   const double below_skin = contact.radius - height;  // the skin is R above the foot point
   return weight * normal *
