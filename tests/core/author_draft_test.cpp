@@ -287,15 +287,20 @@ TEST(AuthorDraft, StiffnessMapIsAnUndoableEdit) {
   EXPECT_EQ(draft.document(), before);
 }
 
-TEST(AuthorDraft, AStiffnessMapOnABodyInKpaKeepsItsForceLaw) {
-  // A map is authored in N/m: the body given by its modulus becomes one given by stiffness,
-  // and keeps the calibrated law it had by default (no modulus left beside the stiffness).
-  CaseDraft preset(preset_defaults(Preset::Slab));
+// The slab preset's document with its body given as 5 kPa instead of a stiffness.
+nlohmann::json slab_in_pa(const CaseDraft& preset) {
   auto doc = preset.document();
   auto& body = doc["bodies"][0];
   body.erase("stiffness");
   body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
-  body["poisson"] = 0.45;
+  return doc;
+}
+
+TEST(AuthorDraft, AStiffnessMapOnABodyInKpaKeepsItsForceLaw) {
+  // A map is authored in N/m: the body given by its modulus becomes one given by stiffness,
+  // and keeps the calibrated law it had by default (no modulus left beside the stiffness).
+  auto doc = slab_in_pa(CaseDraft(preset_defaults(Preset::Slab)));
+  doc["bodies"][0]["poisson"] = 0.45;
   CaseDraft draft = CaseDraft::from_document(doc, "kpa.json");
   ASSERT_TRUE(draft.validate().empty());
   draft.apply_stiffness_map(0, StiffnessMap{1, 2, {0.0, 1.0}}, 100.0, 300.0);
@@ -308,14 +313,11 @@ TEST(AuthorDraft, AStiffnessMapOnABodyInKpaKeepsItsForceLaw) {
 }
 
 TEST(AuthorDraft, ATumourInPaIsListedAndAnEditInTheWindowWritesItInNm) {
-  CaseDraft preset(preset_defaults(Preset::Slab));
-  auto doc = preset.document();
-  auto& body = doc["bodies"][0];
-  body.erase("stiffness");
-  body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
+  const CaseDraft preset(preset_defaults(Preset::Slab));
+  auto doc = slab_in_pa(preset);
   const SurfacePoint centre = pick_top(preset, 0.0, 0.0);
   doc["tumors"] = nlohmann::json::array(
-      {{{"body", body["id"]}, {"center", {centre.point[0], centre.point[1], centre.point[2] - 0.01}},
+      {{{"body", doc["bodies"][0]["id"]}, {"center", {centre.point[0], centre.point[1], centre.point[2] - 0.01}},
         {"radius", 0.005}, {"modulus", 25000.0}}});
   CaseDraft draft = CaseDraft::from_document(doc, "kpa.json");
   ASSERT_TRUE(draft.validate().empty());
