@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -132,9 +133,6 @@ DerivativeBounds sampled_max(const BSplineSurface& s, int n) {
   return m;
 }
 
-/// The parameter of grid line k of n + 1 on [0, 1] (all test surfaces use [0, 1]).
-double param(int k, int lines) { return static_cast<double>(k) / (lines - 1); }
-
 /// Independent measurement of the deviation the bound controls: every triangle sampled at
 /// the barycentric points (a, b, c) / 4, the linearly interpolated (float) position
 /// against S at the linearly interpolated (u, v).
@@ -152,8 +150,8 @@ double deviation(const Mesh& m, const BSplineSurface& s) {
         for (std::size_t k = 0; k < 3; ++k) {
           const int i = static_cast<int>(v[k]) / m.cols;
           const int j = static_cast<int>(v[k]) % m.cols;
-          u += w[k] * param(i, m.rows);
-          vv += w[k] * param(j, m.cols);
+          u += w[k] * m.us[idx(i)];
+          vv += w[k] * m.vs[idx(j)];
           for (std::size_t c = 0; c < 3; ++c) lin[c] += w[k] * static_cast<double>(m.positions[v[k] * 3 + c]);
         }
         std::array<double, 3> S{};
@@ -174,6 +172,10 @@ void expect_valid_mesh(const Mesh& m) {
   EXPECT_EQ(m.positions.size(), 3 * n);
   EXPECT_EQ(m.normals.size(), 3 * n);
   EXPECT_EQ(m.triangles.size(), 6 * idx(m.rows - 1) * idx(m.cols - 1));
+  ASSERT_EQ(m.us.size(), idx(m.rows));
+  ASSERT_EQ(m.vs.size(), idx(m.cols));
+  EXPECT_TRUE(std::is_sorted(m.us.begin(), m.us.end()) && std::adjacent_find(m.us.begin(), m.us.end()) == m.us.end());
+  EXPECT_TRUE(std::is_sorted(m.vs.begin(), m.vs.end()) && std::adjacent_find(m.vs.begin(), m.vs.end()) == m.vs.end());
   for (std::uint32_t t : m.triangles) EXPECT_LT(t, n);
   for (std::size_t k = 0; k < n; ++k) {
     const float* nrm = &m.normals[3 * k];
@@ -267,70 +269,178 @@ TEST(DerivativeBounds, DegreeOneDirectionHasNoSecondDerivative) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Segment counts
+// Grid lines
 
-TEST(Segments, FewestTrianglesWithinTheToleranceByBruteForce) {
-  const std::vector<DerivativeBounds> bounds{{0.6, 0.2, 0.1}, {2.0, 0.0, 0.0}, {0.0, 0.0, 3.0},
-                                             {0.0, 1.0, 0.0}, {5.0, 4.0, 0.01}, {0.0, 0.0, 0.0}};
-  for (const auto& b : bounds) {
-    for (double tol : {1e-2, 1e-3, 3e-4, 1e-4}) {
-      TessellationOptions o;
-      o.tolerance = tol;
-      o.max_segments = 120;
-      const auto s = choose_segments(b, o, 1.0, 0.8);
-      ASSERT_GE(s.u, o.min_segments);
-      ASSERT_GE(s.v, o.min_segments);
-      ASSERT_LE(s.u, o.max_segments);
-      ASSERT_LE(s.v, o.max_segments);
-      EXPECT_DOUBLE_EQ(s.bound, grid_error_bound(b, 1.0, 0.8, s.u, s.v));
-      // Brute force: the fewest cells that meet the tolerance.
-      long best = -1;
-      for (int nu = o.min_segments; nu <= o.max_segments; ++nu)
-        for (int nv = o.min_segments; nv <= o.max_segments; ++nv)
-          if (grid_error_bound(b, 1.0, 0.8, nu, nv) <= tol && (best < 0 || long{nu} * nv < best)) best = long{nu} * nv;
-      if (best < 0) {
-        EXPECT_EQ(s.u, o.max_segments);
-        EXPECT_EQ(s.v, o.max_segments);
-        EXPECT_GT(s.bound, tol);
-      } else {
-        EXPECT_LE(s.bound, tol);
-        EXPECT_EQ(long{s.u} * s.v, best) << "bounds " << b.suu << " " << b.suv << " " << b.svv << " tol " << tol;
+/// The default breast's drawn top contour (refined to 4 mm spans) with a fingertip dent
+/// 6 mm deep near (x, y).
+BSplineSurface dented_display_top(double x, double y) {
+  const auto rest = default_body();
+  deform::DeformOptions o;
+  o.display_span = 0.004;
+  deform::DeformedBody body(rest, o);
+  const contact::FootPointSearch search(rest.skeleton());
+  const contact::Vec3 above(x, y, 0.2);
+  const auto foot = search.closest(rest.skeleton(), above);
+  const auto c0 = contact::make_contact(rest, foot, above);
+  const contact::Vec3 q = foot.point + (c0.radius - 0.006) * c0.outward;
+  const auto c = contact::make_contact(rest, search.closest(rest.skeleton(), q), q);
+  EXPECT_TRUE(c.inside);
+  body.press(c, q);
+  return body.top();
+}
+
+/// The fewest cells of a uniform grid whose bound over the global bounds is within tol
+/// (the grid the tessellation used before it followed the knots), by brute force.
+long uniform_cells(const BSplineSurface& s, double tol, int limit) {
+  const auto b = second_derivative_bounds(s);
+  long best = -1;
+  for (int nu = 1; nu <= limit; ++nu)
+    for (int nv = 1; nv <= limit; ++nv)
+      if (grid_error_bound(b, 1.0, 1.0, nu, nv) <= tol && (best < 0 || long{nu} * nv < best)) best = long{nu} * nv;
+  return best;
+}
+
+TEST(Grid, PatchBoundsBoundTheDenselySampledDerivativesOnTheirPatch) {
+  std::vector<BSplineSurface> surfaces{random_surface(2), default_body().top(), pole_surface(),
+                                       dented_display_top(0.0, -0.01)};
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const auto& s = surfaces[k];
+    GridScratch g;
+    patch_bounds(s, g);
+    const std::size_t nv = g.knots_v.size() - 1;
+    ASSERT_EQ(g.patches.size(), (g.knots_u.size() - 1) * nv);
+    std::array<double, 9 * 3> d{};
+    bool some_patch_tighter = false;
+    const auto global = second_derivative_bounds(s);
+    for (std::size_t a = 0; a + 1 < g.knots_u.size(); ++a) {
+      for (std::size_t b = 0; b < nv; ++b) {
+        const auto& bound = g.patches[a * nv + b];
+        some_patch_tighter = some_patch_tighter || bound.suu < 0.5 * global.suu || bound.svv < 0.5 * global.svv;
+        for (int i = 0; i <= 6; ++i) {
+          for (int j = 0; j <= 6; ++j) {  // inside the patch, its edges approached to 1e-9
+            const double u = g.knots_u[a] + (g.knots_u[a + 1] - g.knots_u[a]) * std::clamp(i / 6.0, 1e-9, 1 - 1e-9);
+            const double v = g.knots_v[b] + (g.knots_v[b + 1] - g.knots_v[b]) * std::clamp(j / 6.0, 1e-9, 1 - 1e-9);
+            s.derivatives(u, v, 2, d, 3);
+            EXPECT_LE(norm3(&d[spline::derivative_index(2, 0, 2, 3, 0)]), bound.suu * (1 + 1e-9) + 1e-12) << k;
+            EXPECT_LE(norm3(&d[spline::derivative_index(1, 1, 2, 3, 0)]), bound.suv * (1 + 1e-9) + 1e-12) << k;
+            EXPECT_LE(norm3(&d[spline::derivative_index(0, 2, 2, 3, 0)]), bound.svv * (1 + 1e-9) + 1e-12) << k;
+          }
+        }
       }
+    }
+    if (k == 3) {
+      EXPECT_TRUE(some_patch_tighter) << "a dent curves a few patches only";
     }
   }
 }
 
-TEST(Segments, BalancedBetweenDirections) {
-  // suu = 4 svv: the u step should be about half the v step (hu^2 suu = hv^2 svv).
+TEST(Grid, EveryKnotIsAGridLineAndEachSpanIsCutEvenly) {
+  const auto s = random_surface(4);
+  Mesh m;
   TessellationOptions o;
-  o.tolerance = 1e-5;
-  const auto s = choose_segments({4.0, 0.0, 1.0}, o, 1.0, 1.0);
-  EXPECT_NEAR(static_cast<double>(s.u) / s.v, 2.0, 0.2);
-  // The continuous optimum hu^2 suu = hv^2 svv = 4 tol has 1 / (hu hv) = sqrt(suu svv) / (4 tol)
-  // cells; integer counts cost at most a few per cent more.
-  EXPECT_LE(static_cast<double>(s.u) * s.v, 1.02 * 2.0 / (4 * o.tolerance));
-  EXPECT_GE(static_cast<double>(s.u) * s.v, 2.0 / (4 * o.tolerance));
+  o.tolerance = 1e-4;
+  tessellate(s, o, false, m);
+  for (const auto* lines : {&m.us, &m.vs}) {
+    const auto& knots = lines == &m.us ? s.knots_u() : s.knots_v();
+    for (double t : knots) EXPECT_NE(std::find(lines->begin(), lines->end(), t), lines->end()) << t;
+    for (std::size_t k = 1; k + 1 < lines->size(); ++k) {
+      if (std::find(knots.begin(), knots.end(), (*lines)[k]) != knots.end()) continue;  // a span ends here
+      EXPECT_NEAR((*lines)[k + 1] - (*lines)[k], (*lines)[k] - (*lines)[k - 1], 1e-12) << k;
+    }
+  }
 }
 
-TEST(Segments, InvalidOptionsThrow) {
+TEST(Grid, ADentMakesOnlyTheLinesThroughItFine) {
+  const auto s = dented_display_top(0.0, -0.01);
+  const double tol = TessellationOptions{}.tolerance;
+  Mesh m;
+  tessellate(s, {}, false, m);
+  expect_valid_mesh(m);
+  EXPECT_LE(deviation(m, s), tol);
+  const long uniform = uniform_cells(s, tol, 512);
+  ASSERT_GT(uniform, 0);
+  const long cells = long{m.rows - 1} * (m.cols - 1);
+  std::printf("dented display top: %ld cells following the knots, %ld uniform\n", cells, uniform);
+  EXPECT_LT(cells, uniform / 3);
+  // The finest rows are where the dent is: the grid's smallest u step brackets the
+  // dent's u, and far from it (a quarter of the domain away) steps are 3x wider.
+  const contact::FootPointSearch search(default_body().skeleton());
+  const double u_dent = search.closest(default_body().skeleton(), contact::Vec3(0.0, -0.01, 0.2)).u;
+  std::size_t finest = 0;
+  for (std::size_t k = 1; k + 1 < m.us.size(); ++k)
+    if (m.us[k + 1] - m.us[k] < m.us[finest + 1] - m.us[finest]) finest = k;
+  EXPECT_NEAR(0.5 * (m.us[finest] + m.us[finest + 1]), u_dent, 0.06);
+  for (std::size_t k = 0; k + 1 < m.us.size(); ++k) {
+    if (std::abs(m.us[k] - u_dent) > 0.25) {
+      EXPECT_GT(m.us[k + 1] - m.us[k], 3 * (m.us[finest + 1] - m.us[finest])) << m.us[k];
+    }
+  }
+}
+
+TEST(Grid, TheToleranceGoesToTheCurvedDirection) {
+  // z = c u^2 on 4 x 3 spans: v is straight, so all the tolerance goes to u and v keeps
+  // one segment per span.
+  const auto s = quadratic_surface(0.1, 0.1, 0.5, 0.0, 0.0, {0.25, 0.5, 0.75}, {0.3, 0.6});
+  Mesh m;
+  TessellationOptions o;
+  o.tolerance = 1e-4;
+  tessellate(s, o, false, m);
+  EXPECT_EQ(m.cols, 4);
+  // The full budget: (1/8) h^2 |Suu| <= tol with |Suu| = 1 gives h <= sqrt(8e-4) = 0.0283,
+  // 9 segments per quarter.
+  EXPECT_EQ(m.rows, 4 * 9 + 1);
+}
+
+TEST(Grid, AtTheSegmentLimitTheGridIsUniform) {
+  const auto s = random_surface(5);
+  TessellationOptions o;
+  o.tolerance = 1e-7;
+  o.max_segments = 8;
+  GridScratch g;
+  std::vector<double> us, vs;
+  const double bound = choose_grid(s, o, g, us, vs);
+  ASSERT_EQ(us.size(), 9u);
+  ASSERT_EQ(vs.size(), 9u);
+  for (std::size_t k = 0; k < us.size(); ++k) EXPECT_NEAR(us[k], static_cast<double>(k) / 8.0, 1e-15);
+  EXPECT_GT(bound, o.tolerance);
+  EXPECT_DOUBLE_EQ(bound, grid_error_bound(second_derivative_bounds(s), 1.0, 1.0, 8, 8));
+}
+
+TEST(Grid, AtLeastMinSegmentsWhereTheSurfaceIsFlat) {
+  const auto s = quadratic_surface(0.1, 0.2, 0.0, 0.0, 0.0, {0.5}, {});
+  TessellationOptions o;
+  o.min_segments = 5;
+  Mesh m;
+  tessellate(s, o, false, m);
+  EXPECT_EQ(m.rows, 6);
+  EXPECT_EQ(m.cols, 6);
+  EXPECT_LT(deviation(m, s), 1e-7);  // float rounding only
+}
+
+TEST(Grid, InvalidOptionsThrow) {
+  const auto s = pole_surface();
+  GridScratch g;
+  std::vector<double> us, vs;
   TessellationOptions o;
   o.tolerance = 0.0;
-  EXPECT_THROW(choose_segments({}, o, 1, 1), std::invalid_argument);
+  EXPECT_THROW(choose_grid(s, o, g, us, vs), std::invalid_argument);
   o.tolerance = std::nan("");
-  EXPECT_THROW(choose_segments({}, o, 1, 1), std::invalid_argument);
+  EXPECT_THROW(choose_grid(s, o, g, us, vs), std::invalid_argument);
   o = {};
   o.min_segments = 0;
-  EXPECT_THROW(choose_segments({}, o, 1, 1), std::invalid_argument);
+  EXPECT_THROW(choose_grid(s, o, g, us, vs), std::invalid_argument);
   o = {};
   o.max_segments = 1;
-  EXPECT_THROW(choose_segments({}, o, 1, 1), std::invalid_argument);
+  EXPECT_THROW(choose_grid(s, o, g, us, vs), std::invalid_argument);
   Mesh m;
   o = {};
   o.tolerance = -1.0;
-  EXPECT_THROW(tessellate(pole_surface(), o, false, m), std::invalid_argument);
+  EXPECT_THROW(tessellate(s, o, false, m), std::invalid_argument);
+  o.tolerance = std::nan("");
+  EXPECT_THROW(tessellate(s, o, false, m), std::invalid_argument);
 }
 
-TEST(Segments, ScreenTolerance) {
+TEST(Grid, ScreenTolerance) {
   EXPECT_DOUBLE_EQ(object_tolerance_from_screen(0.5, 2500.0), 2e-4);
   EXPECT_THROW(object_tolerance_from_screen(0.0, 100.0), std::invalid_argument);
   EXPECT_THROW(object_tolerance_from_screen(1.0, 0.0), std::invalid_argument);
@@ -406,10 +516,10 @@ TEST(Tessellation, VerticesLieOnTheSurfaceAtTheirGridParameters) {
   for (int i = 0; i < m.rows; ++i) {
     for (int j = 0; j < m.cols; ++j) {
       const std::size_t k = idx(i * m.cols + j);
-      s.evaluate(param(i, m.rows), param(j, m.cols), S, 3);
+      s.evaluate(m.us[idx(i)], m.vs[idx(j)], S, 3);
       for (std::size_t c = 0; c < 3; ++c)
         EXPECT_NEAR(static_cast<double>(m.positions[3 * k + c]), S[c], 1e-8) << i << " " << j;
-      s.derivatives(param(i, m.rows), param(j, m.cols), 1, d, 3);
+      s.derivatives(m.us[idx(i)], m.vs[idx(j)], 1, d, 3);
       const double* su = &d[spline::derivative_index(1, 0, 1, 3, 0)];
       const double* sv = &d[spline::derivative_index(0, 1, 1, 3, 0)];
       const double n[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2], su[0] * sv[1] - su[1] * sv[0]};

@@ -60,14 +60,13 @@ vtkSmartPointer<vtkPolyData> to_polydata(const render::Mesh& mesh, const std::ve
 }
 
 // The skeleton's stiffness at each vertex of a contour mesh: vertex (i, j) lies over
-// SK(i / (rows - 1), j / (cols - 1)) (fitted bodies have the knot range [0, 1]^2).
+// SK(us[i], vs[j]) (a contour and its skeleton share their parameters).
 std::vector<float> vertex_stiffness(const mat::MatBody& body, const render::Mesh& mesh) {
   std::vector<float> out(mesh.vertex_count());
   double sample[mat::kSkeletonChannels];
   for (int i = 0; i < mesh.rows; ++i) {
     for (int j = 0; j < mesh.cols; ++j) {
-      body.skeleton().evaluate(mesh.rows > 1 ? static_cast<double>(i) / (mesh.rows - 1) : 0.0,
-                               mesh.cols > 1 ? static_cast<double>(j) / (mesh.cols - 1) : 0.0, sample);
+      body.skeleton().evaluate(mesh.us[static_cast<std::size_t>(i)], mesh.vs[static_cast<std::size_t>(j)], sample);
       out[static_cast<std::size_t>(i) * static_cast<std::size_t>(mesh.cols) + static_cast<std::size_t>(j)] =
           static_cast<float>(std::max(0.0, sample[mat::kStiffness]));
     }
