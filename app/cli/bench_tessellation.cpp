@@ -1,5 +1,7 @@
 // palpa-cli bench tessellation: triangles, time and deviation of the display tessellation
-// against its tolerance, for the first body of a case at rest and pressed.
+// against its tolerance, for the first body of a case at rest, pressed, and pressed as the
+// trainee window draws it (refined to fingertip-sized spans), beside the uniform grid the
+// tessellation used before its grid followed the knots.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -17,6 +19,7 @@
 #include "bench_suites.hpp"
 #include "commands.hpp"
 #include "palpa/deform/deformed_body.hpp"
+#include "palpa/engine/engine.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/plot/line_plot.hpp"
@@ -29,10 +32,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Row {
-  std::string state;  ///< "rest" or "pressed"
+  std::string state;  ///< "rest", "pressed" or "drawn" (pressed, on the display net)
   double tolerance = 0.0;
   std::array<int, 2> segments_u{}, segments_v{};  ///< top, bottom
   std::size_t triangles = 0;                       ///< both contours
+  std::size_t uniform_triangles = 0;               ///< the cheapest uniform grid within the same bound
   double ms_per_body = 0.0;                        ///< median, both contours
   double max_deviation = 0.0;                      ///< m, over both contours
   double bound = 0.0;                              ///< m, the larger a-priori bound of the two
@@ -41,6 +45,22 @@ struct Row {
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Triangles of the uniform grid with the fewest cells whose bound over the surface's
+/// global derivative bounds is within tol (at most max_segments per direction; the cap
+/// when none is), by brute force.
+std::size_t uniform_triangles(const spline::BSplineSurface& s, double tol) {
+  const int limit = render::TessellationOptions{}.max_segments;
+  const auto b = render::second_derivative_bounds(s);
+  const double ru = s.knots_u().back() - s.knots_u().front(), rv = s.knots_v().back() - s.knots_v().front();
+  long best = long{limit} * limit;
+  for (int nu = 1; nu <= limit; ++nu) {
+    int nv = 1;
+    while (nv <= limit && render::grid_error_bound(b, ru, rv, nu, nv) > tol) ++nv;
+    if (nv <= limit) best = std::min(best, long{nu} * nv);
+  }
+  return static_cast<std::size_t>(2 * best);
 }
 
 /// Tessellates top and bottom at one tolerance: the median time of repeated runs into
@@ -74,6 +94,7 @@ Row measure(const std::string& state, const spline::BSplineSurface& top, const s
   r.segments_u = {mt.rows - 1, mb.rows - 1};
   r.segments_v = {mt.cols - 1, mb.cols - 1};
   r.triangles = mt.triangle_count() + mb.triangle_count();
+  r.uniform_triangles = uniform_triangles(top, tolerance) + uniform_triangles(bottom, tolerance);
   r.ms_per_body = times[times.size() / 2];
   r.max_deviation =
       std::max(render::max_parametric_deviation(mt, top, 4), render::max_parametric_deviation(mb, bottom, 4));
@@ -114,20 +135,20 @@ double ms_per_update(deform::DeformedBody& body, const contact::Contact& c, cons
 void write_csv(const std::vector<Row>& rows, const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  out << "state,tolerance_m,segments_u,segments_v,triangles,ms_per_body,max_deviation_m,within\n";
+  out << "state,tolerance_m,segments_u,segments_v,triangles,ms_per_body,max_deviation_m,within,uniform_triangles\n";
   char line[256];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%.3e,%d,%d,%zu,%.4f,%.3e,%d\n", r.state.c_str(), r.tolerance,
+    std::snprintf(line, sizeof line, "%s,%.3e,%d,%d,%zu,%.4f,%.3e,%d,%zu\n", r.state.c_str(), r.tolerance,
                   std::max(r.segments_u[0], r.segments_u[1]), std::max(r.segments_v[0], r.segments_v[1]), r.triangles,
-                  r.ms_per_body, r.max_deviation, r.within ? 1 : 0);
+                  r.ms_per_body, r.max_deviation, r.within ? 1 : 0, r.uniform_triangles);
     out << line;
   }
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
 void write_png(const std::vector<Row>& rows, const std::filesystem::path& path) {
-  const std::array<std::string, 2> states{"rest", "pressed"};
-  const std::array<plot::Marker, 2> markers{plot::Marker::Circle, plot::Marker::Square};
+  const std::array<std::string, 3> states{"rest", "pressed", "drawn"};
+  const std::array<plot::Marker, 3> markers{plot::Marker::Circle, plot::Marker::Square, plot::Marker::Triangle};
   auto panel = [&](const std::string& title, const std::string& ylabel, auto value) {
     plot::LinePlot p;
     p.title = title;
@@ -180,12 +201,14 @@ int run_bench_tessellation(const std::filesystem::path& out_dir, const std::file
 
   // The body pressed 10 mm in over the middle of its skeleton.
   deform::DeformedBody pressed(rest);
+  deform::DeformedBody drawn(rest, engine::EngineOptions{}.deform);  // as the trainee window draws it
   const contact::Vec3 q = probe_below_top(rest, 0.010);
   auto state = scene->make_state();
   const auto hit = scene->probe(q, state);
   const bool have_press = hit.body == 0;
   if (have_press) {
     pressed.press(hit.contact, q);
+    drawn.press(hit.contact, q);
   } else {
     std::printf("note: the probe 10 mm below the top is not inside body '%s': pressed rows skipped\n",
                 rest.id().c_str());
@@ -201,20 +224,21 @@ int run_bench_tessellation(const std::filesystem::path& out_dir, const std::file
   for (double tol : tolerances) rows.push_back(measure("rest", rest.top(), rest.bottom(), tol));
   if (have_press) {
     for (double tol : tolerances) rows.push_back(measure("pressed", pressed.top(), pressed.bottom(), tol));
+    for (double tol : tolerances) rows.push_back(measure("drawn", drawn.top(), drawn.bottom(), tol));
   }
   write_csv(rows, out_dir / "tessellation.csv");
   write_png(rows, out_dir / "tessellation.png");
 
   std::printf("body '%s'; segments u x v for top / bottom; deviation sampled at 15 points per triangle\n",
               rest.id().c_str());
-  std::printf("%-8s %11s %17s %10s %11s %13s %13s %6s\n", "state", "tolerance m", "segments t / b", "triangles",
-              "ms per body", "max dev m", "bound m", "within");
+  std::printf("%-8s %11s %17s %10s %10s %11s %13s %13s %6s\n", "state", "tolerance m", "segments t / b",
+              "triangles", "uniform", "ms per body", "max dev m", "bound m", "within");
   for (const auto& r : rows) {
     char segs[40];
     std::snprintf(segs, sizeof segs, "%dx%d / %dx%d", r.segments_u[0], r.segments_v[0], r.segments_u[1],
                   r.segments_v[1]);
-    std::printf("%-8s %11.2e %17s %10zu %11.4f %13.3e %13.3e %6s\n", r.state.c_str(), r.tolerance, segs, r.triangles,
-                r.ms_per_body, r.max_deviation, r.bound, r.within ? "yes" : "NO");
+    std::printf("%-8s %11.2e %17s %10zu %10zu %11.4f %13.3e %13.3e %6s\n", r.state.c_str(), r.tolerance, segs,
+                r.triangles, r.uniform_triangles, r.ms_per_body, r.max_deviation, r.bound, r.within ? "yes" : "NO");
   }
   if (have_press) {
     std::printf("re-tessellating the pressed body after each press (BodyMeshes::update, default tolerance %.1e m): "
