@@ -8,6 +8,7 @@
 
 #include "palpa/author/case_draft.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/score/thresholds.hpp"
 #include "palpa/trainer/surface_pick.hpp"
@@ -329,6 +330,68 @@ TEST(AuthorDraft, ATumourInPaIsListedAndAnEditInTheWindowWritesItInNm) {
   EXPECT_FALSE(draft.document()["tumors"][0].contains("modulus"));
   EXPECT_EQ(draft.document()["tumors"][0]["stiffness"], 2000.0);
   EXPECT_TRUE(draft.validate().empty());
+}
+
+TEST(AuthorDraft, ATumourSpecInPaIsWrittenAsItsModulusAndKeptThroughEdits) {
+  const CaseDraft preset(preset_defaults(Preset::Slab));
+  CaseDraft draft = CaseDraft::from_document(slab_in_pa(preset), "kpa.json");
+  EXPECT_TRUE(draft.tissue_in_pa());
+  EXPECT_FALSE(preset.tissue_in_pa());
+  TumourSpec spec{0.010, 0.005, 0.0, 20e3};  // 20 kPa: an intermediate-grade carcinoma
+  const auto k = draft.add_tumour(pick_top(preset, 0.0, 0.0), spec);
+  const auto& t = draft.document()["tumors"][k];
+  EXPECT_EQ(t["modulus"], 20e3);
+  EXPECT_FALSE(t.contains("stiffness"));
+  ASSERT_TRUE(draft.validate().empty());
+  const auto read = draft.spec(k);
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->modulus, 20e3);
+  // A new radius keeps the modulus; a modulus of 0 with a stiffness writes the tumour in N/m.
+  spec = *read;
+  spec.radius = 0.004;
+  draft.edit_tumour(k, spec);
+  EXPECT_EQ(draft.document()["tumors"][k]["modulus"], 20e3);
+  EXPECT_EQ(draft.document()["tumors"][k]["radius"], 0.004);
+  spec.modulus = 0.0;
+  spec.stiffness = 1500.0;
+  draft.edit_tumour(k, spec);
+  EXPECT_FALSE(draft.document()["tumors"][k].contains("modulus"));
+  EXPECT_EQ(draft.document()["tumors"][k]["stiffness"], 1500.0);
+  // A tumour in Pa inside a body in N/m is a problem at its modulus.
+  CaseDraft in_nm(preset_defaults(Preset::Slab));
+  in_nm.add_tumour(pick_top(preset, 0.0, 0.0), TumourSpec{0.010, 0.005, 0.0, 20e3});
+  const auto problems = in_nm.validate();
+  ASSERT_FALSE(problems.empty());
+  EXPECT_EQ(problems.front().where, "/tumors/0/modulus");
+}
+
+TEST(AuthorDraft, AModulusMapSetsTheTissueInPaAndTheStiffnessFollowsTheLayer) {
+  const CaseDraft preset(preset_defaults(Preset::Slab));
+  auto doc = slab_in_pa(preset);
+  doc["bodies"][0]["poisson"] = 0.45;
+  CaseDraft draft = CaseDraft::from_document(doc, "kpa.json");
+  const auto before = draft.document();
+  draft.apply_modulus_map(0, StiffnessMap{1, 2, {0.0, 1.0}}, 3e3, 30e3);
+  const auto& body = draft.document()["bodies"][0];
+  EXPECT_FALSE(body.contains("stiffness"));
+  EXPECT_EQ(body["poisson"], 0.45);
+  EXPECT_DOUBLE_EQ(body["modulus"][0].get<double>(), 3e3);    // point (0, 0): v = 0
+  EXPECT_DOUBLE_EQ(body["modulus"][10].get<double>(), 30e3);  // point (0, 10): v = 1
+  ASSERT_TRUE(draft.validate().empty());
+  // The stiffness the case derives at the centre point (5, 5): the layer formula solved
+  // directly (not the table the parser uses) for the point's modulus and thickness 2R.
+  const auto file = draft.valid_case();
+  const std::size_t centre = 5 * 11 + 5;
+  const double e = body["modulus"][centre].get<double>(), r = file.bodies[0].radius[centre];
+  EXPECT_NEAR(e, 16.5e3, 1e-6);
+  EXPECT_NEAR(file.bodies[0].stiffness[centre], mat::layer_stiffness(e, 0.45, mat::kFingertipPadRadius, 2 * r),
+              1e-5 * file.bodies[0].stiffness[centre]);
+  draft.undo();
+  EXPECT_EQ(draft.document(), before);
+  // A body in N/m has no modulus to map: refused, nothing recorded.
+  CaseDraft in_nm(preset_defaults(Preset::Slab));
+  EXPECT_THROW(in_nm.apply_modulus_map(0, StiffnessMap{1, 2, {0.0, 1.0}}, 3e3, 30e3), std::invalid_argument);
+  EXPECT_FALSE(in_nm.can_undo());
 }
 
 // A body change keeps the tumour where it is and measures its depth to the new skin: the

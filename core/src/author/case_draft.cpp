@@ -1,5 +1,6 @@
 #include "palpa/author/case_draft.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -36,6 +37,14 @@ std::optional<std::array<double, 3>> read_vec3(const json& v) {
 std::optional<double> read_number(const json& obj, const char* key) {
   if (!obj.is_object() || !obj.contains(key) || !obj[key].is_number()) return std::nullopt;
   return obj[key].get<double>();
+}
+
+/// A tumour's material as the spec gives it: "modulus" (Pa) when it has one, else
+/// "stiffness" (N/m); the other key is removed.
+void write_material(const TumourSpec& spec, json& t) {
+  const bool by_modulus = spec.modulus > 0.0;
+  t[by_modulus ? "modulus" : "stiffness"] = by_modulus ? spec.modulus : spec.stiffness;
+  t.erase(by_modulus ? "stiffness" : "modulus");
 }
 
 double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
@@ -252,11 +261,10 @@ std::size_t CaseDraft::add_tumour(const SurfacePoint& where, const TumourSpec& s
   const json id = body_id(where.body);
   begin_edit();
   if (!doc_.contains("tumors") || !doc_["tumors"].is_array()) doc_["tumors"] = json::array();
-  doc_["tumors"].push_back({{"body", id},
-                            {"center", below(where, spec.depth)},
-                            {"radius", spec.radius},
-                            {"stiffness", spec.stiffness},
-                            {"anchor", {{"point", where.point}, {"normal", n}}}});
+  json t = {{"body", id}, {"center", below(where, spec.depth)}, {"radius", spec.radius}};
+  write_material(spec, t);
+  t["anchor"] = {{"point", where.point}, {"normal", n}};
+  doc_["tumors"].push_back(std::move(t));
   return doc_["tumors"].size() - 1;
 }
 
@@ -288,8 +296,7 @@ void CaseDraft::edit_tumour(std::size_t k, const TumourSpec& spec) {
     t["anchor"] = {{"point", where->point}, {"normal", n}};
   }
   t["radius"] = spec.radius;
-  t["stiffness"] = spec.stiffness;  // the window authors tumours in N/m: one in Pa becomes one in N/m
-  t.erase("modulus");
+  write_material(spec, t);
 }
 
 void CaseDraft::remove_tumour(std::size_t k) {
@@ -307,6 +314,22 @@ void CaseDraft::set_placement(std::size_t k, const std::optional<exercise::Place
   } else {
     t.erase("placement");
   }
+}
+
+void CaseDraft::apply_modulus_map(std::size_t b, const StiffnessMap& map, double e_min, double e_max) {
+  const io::CaseFile file = io::parse_case(doc_.dump(), source());  // throws CaseError
+  if (b >= file.bodies.size()) throw std::out_of_range("no body " + std::to_string(b));
+  mat::BodyGrid grid = file.bodies[b];
+  if (grid.modulus.empty()) {
+    throw std::invalid_argument("body " + std::to_string(b + 1) + " gives its tissue in N/m, not as a modulus");
+  }
+  try {
+    author::apply_modulus_map(grid, map, e_min, e_max);
+  } catch (const mat::FitError& e) {
+    throw io::CaseError(source(), {{"/bodies/" + std::to_string(b) + "/modulus", e.what()}});
+  }
+  begin_edit();
+  doc_["bodies"][b]["modulus"] = grid.modulus;
 }
 
 void CaseDraft::apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max) {
@@ -338,6 +361,14 @@ std::string CaseDraft::title() const {
 std::optional<PresetParams> CaseDraft::preset() const {
   if (!doc_.is_object() || !doc_.contains("preset")) return std::nullopt;
   return preset_from_json(doc_["preset"]);
+}
+
+bool CaseDraft::tissue_in_pa() const {
+  if (!doc_.is_object() || !doc_.contains("bodies") || !doc_["bodies"].is_array() || doc_["bodies"].empty()) {
+    return false;
+  }
+  return std::all_of(doc_["bodies"].begin(), doc_["bodies"].end(),
+                     [](const json& b) { return b.is_object() && b.contains("modulus"); });
 }
 
 std::size_t CaseDraft::tumour_count() const {
@@ -399,7 +430,7 @@ std::optional<TumourSpec> CaseDraft::spec(std::size_t k) const {
   const auto t = tumour(k);
   const auto a = anchor(k);
   if (!t || !a) return std::nullopt;
-  return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness};
+  return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness, t->modulus};
 }
 
 std::optional<exercise::Placement> CaseDraft::placement(std::size_t k) const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/mat/mat_body.hpp"
 
 namespace palpa::author {
@@ -70,31 +71,53 @@ std::vector<double> map_stiffness(const mat::BodyGrid& grid, const StiffnessMap&
   return k;
 }
 
-int apply_stiffness_map(mat::BodyGrid& grid, const StiffnessMap& map, double k_min, double k_max, int max_passes) {
-  grid.stiffness = map_stiffness(grid, map, k_min, k_max);
+namespace {
+
+/// One pass of neighbour averaging over a rows x cols field: stays within the field's range
+/// and flattens the jumps the spline overshoots on.
+void smooth_once(std::vector<double>& field, int rows, int cols) {
+  const auto old = field;
+  const auto at = [&](int i, int j) { return old[at_index(i, j, cols)]; };
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      double sum = at(i, j);
+      int n = 1;
+      if (i > 0) sum += at(i - 1, j), ++n;
+      if (i + 1 < rows) sum += at(i + 1, j), ++n;
+      if (j > 0) sum += at(i, j - 1), ++n;
+      if (j + 1 < cols) sum += at(i, j + 1), ++n;
+      field[at_index(i, j, cols)] = sum / n;
+    }
+  }
+}
+
+/// Smooths `field` (after `derive` has brought grid.stiffness up to date with it) until the
+/// body fits, at most max_passes times; the passes used.
+template <typename Derive>
+int smooth_until_fit(mat::BodyGrid& grid, std::vector<double>& field, int max_passes, Derive derive) {
   for (int pass = 0;; ++pass) {
+    derive();
     try {
       (void)mat::MatBody::fit(grid);
       return pass;
     } catch (const mat::FitError&) {
       if (pass >= max_passes) throw;
     }
-    // One pass of neighbour averaging: stays within [k_min, k_max] and flattens the jumps
-    // the spline overshoots on.
-    const auto old = grid.stiffness;
-    const auto at = [&](int i, int j) { return old[at_index(i, j, grid.cols)]; };
-    for (int i = 0; i < grid.rows; ++i) {
-      for (int j = 0; j < grid.cols; ++j) {
-        double sum = at(i, j);
-        int n = 1;
-        if (i > 0) sum += at(i - 1, j), ++n;
-        if (i + 1 < grid.rows) sum += at(i + 1, j), ++n;
-        if (j > 0) sum += at(i, j - 1), ++n;
-        if (j + 1 < grid.cols) sum += at(i, j + 1), ++n;
-        grid.stiffness[at_index(i, j, grid.cols)] = sum / n;
-      }
-    }
+    smooth_once(field, grid.rows, grid.cols);
   }
+}
+
+}  // namespace
+
+int apply_stiffness_map(mat::BodyGrid& grid, const StiffnessMap& map, double k_min, double k_max, int max_passes) {
+  grid.stiffness = map_stiffness(grid, map, k_min, k_max);
+  return smooth_until_fit(grid, grid.stiffness, max_passes, [] {});
+}
+
+int apply_modulus_map(mat::BodyGrid& grid, const StiffnessMap& map, double e_min, double e_max, int max_passes) {
+  grid.modulus = map_stiffness(grid, map, e_min, e_max);
+  return smooth_until_fit(grid, grid.modulus, max_passes,
+                          [&grid] { grid.stiffness = mat::layer_stiffness_field(grid.modulus, grid.radius, grid.poisson); });
 }
 
 }  // namespace palpa::author

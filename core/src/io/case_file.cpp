@@ -274,9 +274,7 @@ void read_tissue(const json& body, const std::string& base, std::size_t n, bool 
   }
   read_force_model(body, base, v, g);
   if (!good || !radius_ok) return;
-  const mat::LayerStiffnessTable layer(g.poisson, mat::kFingertipPadRadius);
-  g.stiffness.resize(n);
-  for (std::size_t k = 0; k < n; ++k) g.stiffness[k] = layer(g.modulus[k], 2.0 * g.radius[k]);
+  g.stiffness = mat::layer_stiffness_field(g.modulus, g.radius, g.poisson);
 }
 
 void read_body(const json& body, std::size_t index, std::set<std::string>& ids, Validator& v,

@@ -131,4 +131,12 @@ double LayerStiffnessTable::operator()(double modulus, double thickness) const {
   return 2.0 * pad_radius_ * modulus * kappa / (1.0 - nu_ * nu_);
 }
 
+std::vector<double> layer_stiffness_field(const std::vector<double>& modulus, const std::vector<double>& radius,
+                                          double nu) {
+  const LayerStiffnessTable layer(nu, kFingertipPadRadius);
+  std::vector<double> k(modulus.size());
+  for (std::size_t p = 0; p < k.size(); ++p) k[p] = layer(modulus[p], 2.0 * radius[p]);
+  return k;
+}
+
 }  // namespace palpa::mat

@@ -31,6 +31,9 @@ struct TumourSpec {
   double depth = 0.01;       ///< m, of the centre below the picked surface point (along the normal)
   double radius = 0.005;     ///< m
   double stiffness = 2000.0; ///< N/m: a ~100 kPa region under a fingertip (flat punch: docs/case-authoring.md)
+  /// Pa; > 0: the tumour is written by its Young's modulus instead of `stiffness` (its body
+  /// must give its tissue in Pa too).
+  double modulus = 0.0;
 };
 
 /// Approximate memory (bytes) a JSON value holds: its nodes, strings and containers.
@@ -95,6 +98,10 @@ class CaseDraft {
   /// Sets body b's stiffness from a map (apply_stiffness_map). Throws std::invalid_argument
   /// for a bad map or range, io::CaseError when the body cannot be read or fitted.
   void apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max);
+  /// Sets body b's tissue modulus from a map (author::apply_modulus_map, Pa), keeping its
+  /// Poisson's ratio and force law. Throws std::invalid_argument when body b gives its
+  /// tissue in N/m, or as apply_stiffness_map.
+  void apply_modulus_map(std::size_t b, const StiffnessMap& map, double e_min, double e_max);
 
   // --- Reading back what the editor shows ---
 
@@ -102,12 +109,15 @@ class CaseDraft {
   /// The preset the bodies were made from, if the document records one.
   std::optional<PresetParams> preset() const;
   std::size_t tumour_count() const;
+  /// Every body gives its tissue by its modulus ("modulus", Pa): the editor speaks kPa.
+  /// False for a case without bodies.
+  bool tissue_in_pa() const;
   /// Tumour k's body, centre, radius and stiffness as written (no validation).
   std::optional<mat::Tumour> tumour(std::size_t k) const;
   /// Tumour k's anchor: as recorded by add_tumour/move_tumour, or else the point of the
   /// body's top contour straight above its centre (+z, fitted), when there is one.
   std::optional<SurfacePoint> anchor(std::size_t k) const;
-  /// depth (distance from the anchor), radius and stiffness of tumour k.
+  /// depth (distance from the anchor), radius and stiffness or modulus of tumour k.
   std::optional<TumourSpec> spec(std::size_t k) const;
   std::optional<exercise::Placement> placement(std::size_t k) const;
 

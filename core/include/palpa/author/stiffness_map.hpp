@@ -1,7 +1,8 @@
 #pragma once
 // A stiffness map: a 2-D grid of values in [0, 1] (for example a grayscale image, decoded
 // by the UI; core never sees an image library) laid over a body's skeleton grid and
-// turned into per-point stiffness between k_min and k_max.
+// turned into per-point stiffness between k_min and k_max (N/m), or into the tissue's
+// Young's modulus between e_min and e_max (Pa) for a body given in kPa.
 //
 // Orientation: the map's rows run along the body's u (grid rows), its columns along v
 // (grid columns). Skeleton point (i, j) samples the map at the normalized position
@@ -38,5 +39,11 @@ std::vector<double> map_stiffness(const mat::BodyGrid& grid, const StiffnessMap&
 /// does not fit even after max_passes (or for a reason other than the stiffness).
 int apply_stiffness_map(mat::BodyGrid& grid, const StiffnessMap& map, double k_min, double k_max,
                         int max_passes = 50);
+
+/// The same for a body given by its tissue's Young's modulus: grid.modulus from the map
+/// (e_min..e_max, Pa), grid.stiffness derived from it over the local thickness as a case
+/// file's is (mat::layer_stiffness_field), the modulus smoothed until the body fits.
+/// Throws as apply_stiffness_map.
+int apply_modulus_map(mat::BodyGrid& grid, const StiffnessMap& map, double e_min, double e_max, int max_passes = 50);
 
 }  // namespace palpa::author

@@ -10,6 +10,7 @@
 // stiffer than a half-space). docs/model.md, "Stiffness from the tissue's modulus", gives
 // the derivation and the FEM checks (data/reference/).
 #include <array>
+#include <vector>
 
 namespace palpa::mat {
 
@@ -42,5 +43,11 @@ class LayerStiffnessTable {
   double nu_, pad_radius_;
   std::array<double, kIntervals + 1> kappa_{};
 };
+
+/// N/m per skeleton point of a body given by its modulus (Pa per point) over the local
+/// thickness 2 radius (m per point), under the fingertip pad (kFingertipPadRadius): what a
+/// case file's "modulus" becomes. The vectors have the same length.
+std::vector<double> layer_stiffness_field(const std::vector<double>& modulus, const std::vector<double>& radius,
+                                          double nu);
 
 }  // namespace palpa::mat
