@@ -312,6 +312,84 @@ class InstructorWindowTest : public QObject {
     QVERIFY(window.title_edit()->styleSheet().isEmpty());
   }
 
+  // A case whose tissue is given in Pa is edited in kPa: a tumour placed by a click is
+  // written by its modulus (the panel's 20 kPa, then 35 kPa typed in), the overlay's legend
+  // reads the tissue's 5 kPa, and a grayscale map sets the modulus between the panel's
+  // black and white kPa. Nothing of it turns the case into N/m.
+  void aCaseInKpaIsEditedInKpa() {
+    QTemporaryDir dir;
+    auto doc = palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab)).document();
+    auto& body = doc["bodies"][0];
+    body.erase("stiffness");
+    body["modulus"] = std::vector<double>(body["radius"].size(), 5000.0);
+    doc.erase("preset");
+    const QString path = dir.filePath("slab_kpa.json");
+    write_text(path, doc.dump(2));
+    InstructorWindow window{palpa::author::CaseDraft()};
+    show(window);
+    QVERIFY2(window.open_case(path), qPrintable(window.message()));
+    auto* material = window.tumour_panel()->stiffness_box();
+    QCOMPARE(material->suffix(), QString(" kPa"));
+    QCOMPARE(material->value(), 20.0);
+
+    const QPoint at = window.to_view(palpa::trainer::Vec3(0.0, 0.0, 0.03));
+    QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, at);
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+    const auto& t = window.draft().document()["tumors"][0];
+    QCOMPARE(t["modulus"].get<double>(), 20e3);
+    QVERIFY(!t.contains("stiffness"));
+    QVERIFY(window.draft().validate().empty());
+    QCOMPARE(window.tumour_panel()->table()->item(0, 2)->text(), QString("20.0 kPa"));
+
+    // 35 typed into the selected tumour's modulus box.
+    QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    material->setFocus();
+    QTest::keyClick(material, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(material, "35");
+    QTest::keyClick(material, Qt::Key_Return);
+    QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 35e3);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 5000.0);
+
+    window.set_stiffness_overlay(true);
+    QVERIFY(window.scene().overlay_in_kpa());
+    const auto range = window.scene().stiffness_range();
+    QVERIFY2(std::abs(range[0] - 5.0) < 0.25 && std::abs(range[1] - 5.0) < 0.25,
+             qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
+
+    // A ramp along x (the grid rows) from 4 to 24 kPa: skeleton row i gets 4 + 20 i / 10 kPa.
+    QImage ramp(64, 32, QImage::Format_Grayscale8);
+    for (int y = 0; y < ramp.height(); ++y) {
+      for (int x = 0; x < ramp.width(); ++x) {
+        const int v = static_cast<int>(std::lround(x * 255.0 / 63.0));
+        ramp.setPixelColor(x, y, QColor(v, v, v));
+      }
+    }
+    const QString png = dir.filePath("ramp.png");
+    QVERIFY(ramp.save(png));
+    QDoubleSpinBox* black = nullptr;
+    QDoubleSpinBox* white = nullptr;
+    for (auto* b : window.preset_panel()->findChildren<QDoubleSpinBox*>()) {
+      if (b->toolTip() == "Modulus of black pixels") black = b;
+      if (b->toolTip() == "Modulus of white pixels") white = b;
+    }
+    QVERIFY(black && white);
+    QCOMPARE(black->suffix(), QString(" kPa"));
+    black->setValue(4.0);
+    white->setValue(24.0);
+    QVERIFY2(window.import_stiffness_map(png), qPrintable(window.message()));
+    QVERIFY(window.message().contains("kPa"));
+    const auto& edited = window.draft().document()["bodies"][0];
+    QVERIFY(!edited.contains("stiffness"));
+    for (int i = 0; i < 11; ++i) {
+      const double expected = 4000.0 + 20000.0 * i / 10.0;
+      const double got = edited["modulus"][static_cast<std::size_t>(i * 11 + 5)].get<double>();
+      QVERIFY2(std::abs(got - expected) < 100.0, qPrintable(QString("row %1: %2 vs %3").arg(i).arg(got).arg(expected)));
+    }
+    const auto spread = window.scene().stiffness_range();
+    QVERIFY2(spread[0] > 3.0 && spread[0] < 5.0 && spread[1] > 23.0 && spread[1] < 25.0,
+             qPrintable(QString("%1 %2").arg(spread[0]).arg(spread[1])));
+  }
+
   // A 64 x 32 grayscale ramp, black at the left to white at the right (along x, the grid
   // rows): with black = 100 and white = 500 N/m, skeleton row i of the 11 x 11 slab gets
   // 100 + 400 i / 10 (to the 8-bit quantization).

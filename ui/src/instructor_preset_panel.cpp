@@ -120,6 +120,25 @@ author::PresetParams InstructorPresetPanel::params() const {
   return p;
 }
 
+void InstructorPresetPanel::set_map_in_kpa(bool kpa) {
+  if (kpa == map_in_kpa_) return;
+  map_in_kpa_ = kpa;
+  const QString unit = kpa ? tr(" kPa") : tr(" N/m");
+  const QString what = kpa ? tr("Modulus") : tr("Stiffness");
+  for (auto* box : {map_min_, map_max_}) {
+    box->setSuffix(unit);
+    box->setDecimals(kpa ? 1 : 0);
+    box->setRange(0.0, kpa ? 1e4 : 1e5);
+  }
+  // In kPa: breast fat about 3 kPa to dense fibrous tissue about 30 kPa at small strain
+  // (Samani 2007; Krouskop 1998's 5 % pre-compression values); in N/m their flat-punch
+  // stiffness (docs/case-authoring.md).
+  map_min_->setValue(kpa ? 3.0 : 60.0);
+  map_max_->setValue(kpa ? 30.0 : 600.0);
+  map_min_->setToolTip(what + tr(" of black pixels"));
+  map_max_->setToolTip(what + tr(" of white pixels"));
+}
+
 double InstructorPresetPanel::map_k_min() const { return map_min_->value(); }
 double InstructorPresetPanel::map_k_max() const { return map_max_->value(); }
 

@@ -74,6 +74,34 @@ std::vector<float> vertex_stiffness(const mat::MatBody& body, const render::Mesh
   return out;
 }
 
+// The interval of sorted sites holding t and t's share of the way across it.
+std::pair<std::size_t, double> locate(const std::vector<double>& sites, double t) {
+  const auto hi = std::upper_bound(sites.begin() + 1, sites.end() - 1, t);
+  const auto k = static_cast<std::size_t>(hi - sites.begin()) - 1;
+  const double w = sites[k + 1] > sites[k] ? (t - sites[k]) / (sites[k + 1] - sites[k]) : 0.0;
+  return {k, std::clamp(w, 0.0, 1.0)};
+}
+
+// The tissue's modulus (kPa) at each vertex of a contour mesh: the authored modulus of the
+// grid points bilinear between their parameters, exact at the points and never outside
+// their range (the stiffness the case derives from it also follows the thickness).
+std::vector<float> vertex_modulus(const mat::MatBody& body, const mat::BodyGrid& grid, const render::Mesh& mesh) {
+  std::vector<float> out(mesh.vertex_count());
+  const auto& su = body.u_params();
+  const auto& sv = body.v_params();
+  const auto at = [&](std::size_t i, std::size_t j) { return grid.modulus[i * static_cast<std::size_t>(grid.cols) + j]; };
+  for (std::size_t i = 0; i < mesh.us.size(); ++i) {
+    const auto [a, wu] = locate(su, mesh.us[i]);
+    for (std::size_t j = 0; j < mesh.vs.size(); ++j) {
+      const auto [b, wv] = locate(sv, mesh.vs[j]);
+      const double e = (1 - wu) * ((1 - wv) * at(a, b) + wv * at(a, b + 1)) +
+                       wu * ((1 - wv) * at(a + 1, b) + wv * at(a + 1, b + 1));
+      out[i * mesh.vs.size() + j] = static_cast<float>(1e-3 * e);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 InstructorScene::InstructorScene(vtkRenderer* bodies, vtkRenderer* overlay) : bodies_(bodies), overlay_(overlay) {
@@ -116,6 +144,11 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
   auto picker = std::make_unique<trainer::TopContourPicker>(*scene);
   clear_bodies();
   range_ = {std::numeric_limits<double>::max(), 0.0};
+  // The overlay speaks kPa when every body gives its tissue by its modulus.
+  in_kpa_ = !file.bodies.empty() && std::all_of(file.bodies.begin(), file.bodies.end(),
+                                                 [](const mat::BodyGrid& g) { return !g.modulus.empty(); });
+  legend_->SetTitle(in_kpa_ ? "Modulus (kPa)" : "Stiffness (N/m)");
+  legend_->SetLabelFormat(in_kpa_ ? "%.1f" : "%.0f");
   render::TessellationOptions options;
   options.tolerance = kTolerance;
   for (std::size_t b = 0; b < scene->size(); ++b) {
@@ -125,7 +158,7 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
       render::tessellate(side == 0 ? body.top() : body.bottom(), options, side == 1, mesh);
       std::vector<float> k;
       if (side == 0) {
-        k = vertex_stiffness(body, mesh);
+        k = in_kpa_ ? vertex_modulus(body, file.bodies[b], mesh) : vertex_stiffness(body, mesh);
         for (float x : k) range_ = {std::min<double>(range_[0], x), std::max<double>(range_[1], x)};
       }
       Surface s;

@@ -26,6 +26,17 @@ QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int dec
 
 const QColor kProblem(255, 200, 200);
 
+// A new tumour's material: a ~100 kPa region under a fingertip in N/m (flat-punch estimate,
+// docs/case-authoring.md), or as a modulus an intermediate-grade invasive carcinoma's
+// 20 kPa (Samani, Zubovits and Plewes 2007: about 6 times breast fat).
+constexpr double kDefaultStiffness = 2000.0;  // N/m
+constexpr double kDefaultModulusKpa = 20.0;   // kPa
+
+QString material_text(const mat::Tumour& t) {
+  return t.modulus > 0.0 ? QString::number(t.modulus * 1e-3, 'f', 1) + " kPa"
+                         : QString::number(t.stiffness, 'f', 0) + " N/m";
+}
+
 }  // namespace
 
 InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tumours"), parent) {
@@ -34,7 +45,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   help->setWordWrap(true);
   layout->addWidget(help);
   table_ = new QTableWidget(0, 4, this);
-  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("N/m"), tr("Random")});
+  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("Stiffness"), tr("Random")});
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -49,12 +60,12 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   depth_->setToolTip(tr("Depth of the centre below the picked skin point"));
   radius_ = spin(this, 0.01, 50.0, 0.5, 2, tr(" mm"));
   radius_->setValue(5.0);
-  // A ~100 kPa region under a fingertip (flat-punch estimate: docs/case-authoring.md).
   stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
-  stiffness_->setValue(2000.0);
+  stiffness_->setValue(kDefaultStiffness);
+  material_label_ = new QLabel(tr("Stiffness"), this);
   form->addRow(tr("Depth"), depth_);
   form->addRow(tr("Radius"), radius_);
-  form->addRow(tr("Stiffness"), stiffness_);
+  form->addRow(material_label_, stiffness_);
   layout->addLayout(form);
 
   randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
@@ -107,7 +118,7 @@ void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
     const int row = static_cast<int>(k);
     const QString cells[] = {s ? QString::number(s->depth * 1e3, 'f', 2) : QString("?"),
                              t ? QString::number(t->radius * 1e3, 'f', 2) : QString("?"),
-                             t ? QString::number(t->stiffness, 'f', 0) : QString("?"),
+                             t ? material_text(*t) : QString("?"),
                              draft.placement(k) ? tr("yes") : tr("no")};
     for (int c = 0; c < 4; ++c) {
       auto* item = new QTableWidgetItem(cells[c]);
@@ -121,6 +132,20 @@ void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
   }
   show_selected();
   updating_ = false;
+}
+
+void InstructorTumourPanel::set_material_unit(bool kpa) {
+  if (kpa == in_kpa_) return;
+  in_kpa_ = kpa;
+  const QSignalBlocker block(stiffness_);
+  material_label_->setText(kpa ? tr("Modulus") : tr("Stiffness"));
+  stiffness_->setSuffix(kpa ? tr(" kPa") : tr(" N/m"));
+  stiffness_->setDecimals(kpa ? 1 : 0);
+  stiffness_->setRange(0.0, kpa ? 1e4 : 1e5);
+  stiffness_->setSingleStep(kpa ? 1.0 : 100.0);
+  stiffness_->setToolTip(kpa ? tr("Young's modulus of the tumour (breast carcinoma: about 10-45 kPa)")
+                             : tr("Stiffness per skeleton point the finger meets over the tumour"));
+  stiffness_->setValue(kpa ? kDefaultModulusKpa : kDefaultStiffness);
 }
 
 std::optional<std::size_t> InstructorTumourPanel::selected() const {
@@ -142,11 +167,14 @@ void InstructorTumourPanel::show_selected() {
   updating_ = true;
   const auto k = selected();
   remove_->setEnabled(k.has_value());
+  // The unit follows the selected tumour, or for the next one the case's tissue.
+  const auto t = k && draft_ ? draft_->tumour(*k) : std::nullopt;
+  set_material_unit(t ? t->modulus > 0.0 : draft_ && draft_->tissue_in_pa());
   if (k && draft_) {
     if (const auto s = draft_->spec(*k)) {
       depth_->setValue(s->depth * 1e3);
       radius_->setValue(s->radius * 1e3);
-      stiffness_->setValue(s->stiffness);
+      stiffness_->setValue(in_kpa_ ? s->modulus * 1e-3 : s->stiffness);
     }
     const auto rule = draft_->placement(*k);
     randomize_->setChecked(rule.has_value());
@@ -159,7 +187,8 @@ void InstructorTumourPanel::show_selected() {
 }
 
 author::TumourSpec InstructorTumourPanel::spec() const {
-  return {depth_->value() * 1e-3, radius_->value() * 1e-3, stiffness_->value()};
+  if (in_kpa_) return {depth_->value() * 1e-3, radius_->value() * 1e-3, 0.0, stiffness_->value() * 1e3};
+  return {depth_->value() * 1e-3, radius_->value() * 1e-3, stiffness_->value(), 0.0};
 }
 
 std::optional<exercise::Placement> InstructorTumourPanel::placement() const {
@@ -182,10 +211,14 @@ void InstructorTumourPanel::emit_spec(const QDoubleSpinBox* changed) {
     } else if (const auto t = draft_->tumour(*k)) {
       merged.radius = t->radius;
       merged.stiffness = t->stiffness;
+      merged.modulus = t->modulus;
     }
     if (changed == depth_) merged.depth = s.depth;
     if (changed == radius_) merged.radius = s.radius;
-    if (changed == stiffness_) merged.stiffness = s.stiffness;
+    if (changed == stiffness_) {
+      merged.stiffness = s.stiffness;
+      merged.modulus = s.modulus;
+    }
     s = merged;
   }
   emit spec_changed(*k, s);
@@ -216,7 +249,7 @@ void InstructorTumourPanel::add_problem(std::size_t k, const QString& field, con
   int column = -1;
   if (field.startsWith("center")) column = 0;
   if (field.startsWith("radius")) column = 1;
-  if (field.startsWith("stiffness")) column = 2;
+  if (field.startsWith("stiffness") || field.startsWith("modulus")) column = 2;
   if (field.startsWith("placement")) column = 3;
   for (int c = 0; c < table_->columnCount(); ++c) {
     if (auto* item = table_->item(row, c); item && (column < 0 || c == column)) {

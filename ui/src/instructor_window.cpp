@@ -248,6 +248,7 @@ void InstructorWindow::refresh() {
   const QString title = QString::fromStdString(draft_.title());
   if (!title_->isModified() && title_->text() != title) title_->setText(title);
   preset_panel_->show_params(draft_.preset());
+  preset_panel_->set_map_in_kpa(draft_.tissue_in_pa());
   tumour_panel_->show_draft(draft_);
 
   // The bodies are drawn from the document without its tumours, so that a tumour's

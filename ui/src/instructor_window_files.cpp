@@ -77,14 +77,20 @@ bool InstructorWindow::import_stiffness_map(const QString& path) {
     set_message(QString::fromStdString(error));
     return false;
   }
-  const double k_min = preset_panel_->map_k_min(), k_max = preset_panel_->map_k_max();
+  const double lo = preset_panel_->map_k_min(), hi = preset_panel_->map_k_max();
+  const bool kpa = preset_panel_->map_in_kpa();
   bool ok = false;
   edit([&] {
-    draft_.apply_stiffness_map(0, *map, k_min, k_max);
+    if (kpa) {
+      draft_.apply_modulus_map(0, *map, lo * 1e3, hi * 1e3);
+    } else {
+      draft_.apply_stiffness_map(0, *map, lo, hi);
+    }
     ok = true;
   });
   if (ok) {
-    set_message(tr("Stiffness map %1 applied: %2 to %3 N/m.").arg(path).arg(k_min).arg(k_max));
+    set_message(kpa ? tr("Modulus map %1 applied: %2 to %3 kPa.").arg(path).arg(lo).arg(hi)
+                    : tr("Stiffness map %1 applied: %2 to %3 N/m.").arg(path).arg(lo).arg(hi));
     set_stiffness_overlay(true);  // show what it did
   }
   return ok;

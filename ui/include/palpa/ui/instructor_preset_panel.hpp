@@ -26,9 +26,14 @@ class InstructorPresetPanel : public QGroupBox {
   void show_params(const std::optional<author::PresetParams>& params);
   /// The parameters the controls show (SI).
   author::PresetParams params() const;
-  /// Stiffness range (N/m) of an imported map: black -> first, white -> second.
+  /// The range of an imported map, black -> min, white -> max, in the unit shown: a
+  /// stiffness in N/m, or a modulus in kPa (map_in_kpa).
   double map_k_min() const;
   double map_k_max() const;
+  /// Shows the map range as the tissue's modulus in kPa (a case given in Pa) or as a
+  /// stiffness in N/m; the values reset to the unit's defaults when the unit changes.
+  void set_map_in_kpa(bool kpa);
+  bool map_in_kpa() const { return map_in_kpa_; }
   /// Marks the body controls as holding a problem (red frame) with `tip` as the reason.
   void set_problem(const QString& tip);
 
@@ -54,6 +59,7 @@ class InstructorPresetPanel : public QGroupBox {
   QDoubleSpinBox* stiffness_ = nullptr;
   QDoubleSpinBox* map_min_ = nullptr;
   QDoubleSpinBox* map_max_ = nullptr;
+  bool map_in_kpa_ = false;
   QPushButton* import_ = nullptr;
   QLabel* note_ = nullptr;
   int rows_ = 0, cols_ = 0;  // grid of the shown parameters (kept through edits)

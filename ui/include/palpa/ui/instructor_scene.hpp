@@ -33,7 +33,8 @@ class InstructorScene {
   void set_bodies(const io::CaseFile& file);
   /// Draws these tumours (centre, radius); `selected` (an index) in another colour.
   void set_tumours(const std::vector<mat::Tumour>& tumours, std::optional<std::size_t> selected);
-  /// Colours the top contours by stiffness (N/m) and shows the legend.
+  /// Colours the top contours by stiffness (N/m), or by the tissue's modulus (kPa) when
+  /// every body gives it, and shows the legend.
   void set_stiffness_overlay(bool on);
   bool stiffness_overlay() const { return overlay_on_; }
 
@@ -43,8 +44,9 @@ class InstructorScene {
   /// Bounds of the drawn body surfaces {xmin, xmax, ymin, ymax, zmin, zmax}.
   std::array<double, 6> bounds() const;
   std::size_t tumour_count() const { return tumours_.size(); }
-  /// Stiffness (N/m) range the overlay's colours span.
+  /// The range the overlay's colours span, in its unit (N/m, or kPa: overlay_in_kpa).
   std::array<double, 2> stiffness_range() const { return range_; }
+  bool overlay_in_kpa() const { return in_kpa_; }
   /// A body's drawn top contour (tests read its points and scalars).
   vtkPolyData* top(std::size_t body) const;
 
@@ -65,6 +67,7 @@ class InstructorScene {
   vtkSmartPointer<vtkScalarBarActor> legend_;
   std::array<double, 2> range_{0.0, 1.0};
   bool overlay_on_ = false;
+  bool in_kpa_ = false;
 };
 
 }  // namespace palpa::ui

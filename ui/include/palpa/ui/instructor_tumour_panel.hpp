@@ -1,8 +1,9 @@
 #pragma once
 // The instructor's tumour controls: the case's tumours in a table (one row each), the
-// depth below the skin (mm), radius (mm) and stiffness (N/m) of the selected one (or of
-// the next one a click places, when none is selected), and its randomization rule: the
-// (u, v) rectangle and the depth fraction range a seeded exercise draws its centre from.
+// depth below the skin (mm), radius (mm) and stiffness (N/m) or Young's modulus (kPa, in
+// a case whose tissue is given in Pa) of the selected one (or of the next one a click
+// places, when none is selected), and its randomization rule: the (u, v) rectangle and
+// the depth fraction range a seeded exercise draws its centre from.
 #include <optional>
 
 #include <QGroupBox>
@@ -11,6 +12,7 @@
 
 class QCheckBox;
 class QDoubleSpinBox;
+class QLabel;
 class QPushButton;
 class QTableWidget;
 
@@ -26,8 +28,10 @@ class InstructorTumourPanel : public QGroupBox {
   /// The selected tumour's row, if any.
   std::optional<std::size_t> selected() const;
   void select(std::optional<std::size_t> k);
-  /// Depth, radius and stiffness in the spin boxes (SI).
+  /// Depth, radius and stiffness or modulus in the spin boxes (SI).
   author::TumourSpec spec() const;
+  /// The material box shows a modulus in kPa (else a stiffness in N/m).
+  bool material_in_kpa() const { return in_kpa_; }
   /// The rule the controls show, or nothing when randomization is off.
   std::optional<exercise::Placement> placement() const;
   /// Highlights rows holding a problem (red) with their reasons as tooltips; `field` is the
@@ -56,12 +60,17 @@ class InstructorTumourPanel : public QGroupBox {
   /// Emits the selected tumour's spec with only `changed`'s field from the boxes.
   void emit_spec(const QDoubleSpinBox* changed);
   void emit_placement();
+  /// Shows the material box in kPa (a modulus) or N/m (a stiffness); resets its value to
+  /// the unit's default when the unit changes.
+  void set_material_unit(bool kpa);
 
   const author::CaseDraft* draft_ = nullptr;
   QTableWidget* table_ = nullptr;
   QDoubleSpinBox* depth_ = nullptr;
   QDoubleSpinBox* radius_ = nullptr;
-  QDoubleSpinBox* stiffness_ = nullptr;
+  QDoubleSpinBox* stiffness_ = nullptr;  // stiffness (N/m) or modulus (kPa): in_kpa_
+  QLabel* material_label_ = nullptr;
+  bool in_kpa_ = false;
   QCheckBox* randomize_ = nullptr;
   QDoubleSpinBox* rule_[6] = {};
   QPushButton* remove_ = nullptr;
