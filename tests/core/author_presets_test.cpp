@@ -8,6 +8,7 @@
 
 #include "palpa/author/presets.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/render/tessellation.hpp"
 #include "palpa/scene/scene.hpp"
@@ -146,6 +147,53 @@ TEST(AuthorPresets, OutOfLimitsIsRejectedNamingTheParameter) {
   p = preset_defaults(Preset::Slab);
   p.rows = 3;
   EXPECT_THROW((void)make_preset_body(p), std::invalid_argument);
+}
+
+// Presets in kPa: at the literature defaults and at the corners of the size and modulus
+// limits, a valid case written by its modulus (no stiffness in the file), following the
+// calibrated law, whose centre point's derived stiffness is the bonded-layer formula for
+// the modulus over the centre's thickness (solved directly, not by the parser's table).
+TEST(AuthorPresets, PresetsInKpaAreValidAndWrittenByTheirModulus) {
+  for (Preset preset : kPresets) {
+    const auto l = preset_limits(preset);
+    const auto d = preset_defaults_in_kpa(preset);
+    EXPECT_TRUE(d.modulus >= l.modulus[0] && d.modulus <= l.modulus[1]) << to_string(preset);
+    expect_valid(d);
+    for (int corner = 0; corner < 16; ++corner) {
+      PresetParams p = d;
+      p.width = l.width[corner & 1];
+      p.length = l.length[(corner >> 1) & 1];
+      p.thickness = l.thickness[(corner >> 2) & 1];
+      p.modulus = l.modulus[(corner >> 3) & 1];
+      expect_valid(p);
+    }
+    const auto file = make_preset_case(d, "t");
+    const auto doc = io::to_json(file);
+    const auto& body = doc["bodies"][0];
+    EXPECT_FALSE(body.contains("stiffness"));
+    ASSERT_TRUE(body.contains("modulus"));
+    EXPECT_EQ(body["modulus"][0], d.modulus);
+    const auto parsed = io::parse_case(doc.dump(), "preset");
+    const auto& g = parsed.bodies.front();
+    EXPECT_EQ(g.force_model, mat::ForceModel::Calibrated);
+    const std::size_t centre = static_cast<std::size_t>((g.rows / 2) * g.cols + g.cols / 2);
+    EXPECT_NEAR(g.stiffness[centre], mat::layer_stiffness(d.modulus, g.poisson, mat::kFingertipPadRadius,
+                                                          2.0 * g.radius[centre]),
+                1e-5 * g.stiffness[centre]);
+    // The record round-trips with its modulus; an old record without one is in N/m.
+    EXPECT_EQ(preset_from_json(file.document["preset"]), d);
+    auto old = file.document["preset"];
+    old.erase("modulus");
+    EXPECT_EQ(preset_from_json(old)->modulus, 0.0);
+  }
+  PresetParams soft = preset_defaults_in_kpa(Preset::Breast);
+  soft.modulus = 100.0;  // 0.1 kPa: softer than any tissue
+  try {
+    (void)make_preset_body(soft);
+    FAIL() << "accepted 0.1 kPa";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("modulus"), std::string::npos) << e.what();
+  }
 }
 
 TEST(AuthorPresets, CaseRecordsItsPreset) {

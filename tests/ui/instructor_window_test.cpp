@@ -312,6 +312,53 @@ class InstructorWindowTest : public QObject {
     QVERIFY(window.title_edit()->styleSheet().isEmpty());
   }
 
+  // A preset in kPa: the breast of 3.25 kPa fat (Samani 2007), written by its modulus;
+  // another preset takes its own literature modulus, a typed modulus is written in Pa,
+  // switching the tissue to N/m gives the preset's paper stiffness instead, and File > New
+  // keeps the unit chosen.
+  void presetsInKpaAndTheTissueUnitCanBeSwitched() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    show(window);
+    auto* panel = window.preset_panel();
+    QCOMPARE(panel->tissue_box()->currentData().toString(), QString("kpa"));
+    QCOMPARE(panel->stiffness_box()->suffix(), QString(" kPa"));
+    QCOMPARE(panel->stiffness_box()->value(), 3.25);
+    const auto& breast = window.draft().document()["bodies"][0];
+    QCOMPARE(breast["modulus"][0].get<double>(), 3250.0);
+    QVERIFY(!breast.contains("stiffness"));
+    QCOMPARE(window.tumour_panel()->stiffness_box()->suffix(), QString(" kPa"));
+
+    panel->preset_box()->setCurrentIndex(panel->preset_box()->findData(QString("slab")));
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 7000.0);
+    QCOMPARE(panel->stiffness_box()->value(), 7.0);
+    auto* modulus = panel->stiffness_box();
+    modulus->setFocus();
+    QTest::keyClick(modulus, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(modulus, "12.5");
+    QTest::keyClick(modulus, Qt::Key_Return);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
+    QCOMPARE(window.draft().preset()->modulus, 12500.0);
+    QVERIFY(window.draft().validate().empty());
+
+    panel->tissue_box()->setCurrentIndex(panel->tissue_box()->findData(QString("nm")));
+    const auto& slab = window.draft().document()["bodies"][0];
+    QVERIFY(!slab.contains("modulus"));
+    QCOMPARE(slab["stiffness"][0].get<double>(), palpa::author::preset_defaults(Preset::Slab).stiffness);
+    QCOMPARE(panel->stiffness_box()->suffix(), QString(" N/m"));
+    QCOMPARE(window.tumour_panel()->stiffness_box()->suffix(), QString(" N/m"));
+    // Undo goes back to the slab in kPa, and the controls follow.
+    window.undo_action()->trigger();
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
+    QCOMPARE(panel->tissue_box()->currentData().toString(), QString("kpa"));
+    QCOMPARE(panel->stiffness_box()->value(), 12.5);
+    // File > New in the unit chosen: a prostate of 21 kPa (Gerling 2009).
+    window.new_case(Preset::Prostate);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 21000.0);
+    // A new window starts in N/m (see docs/user-guide.md, "Cases in kPa").
+    InstructorWindow fresh{palpa::author::CaseDraft()};
+    QCOMPARE(fresh.preset_panel()->tissue_box()->currentData().toString(), QString("nm"));
+  }
+
   // A case whose tissue is given in Pa is edited in kPa: a tumour placed by a click is
   // written by its modulus (the panel's 20 kPa, then 35 kPa typed in), the overlay's legend
   // reads the tissue's 5 kPa, and a grayscale map sets the modulus between the panel's

@@ -39,10 +39,15 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   thickness_ = spin(this, tr(" mm"), 1);
   thickness_->setToolTip(tr("Tissue thickness at the centre, skin to base"));
   form->addRow(tr("Thickness"), thickness_);
+  tissue_ = new QComboBox(this);
+  tissue_->addItem(tr("Modulus in kPa"), QString("kpa"));
+  tissue_->addItem(tr("Stiffness in N/m (paper)"), QString("nm"));
+  tissue_->setToolTip(tr("Give the tissue as its Young's modulus (kPa: forces calibrated against tissue "
+                         "mechanics) or as the paper's stiffness per skeleton point (N/m)"));
+  form->addRow(tr("Tissue"), tissue_);
   stiffness_ = spin(this, tr(" N/m"), 0);
-  stiffness_->setToolTip(tr("Tissue stiffness per skeleton point (the breast's glandular centre; its fatty "
-                            "periphery is 0.4 times this)"));
-  form->addRow(tr("Stiffness"), stiffness_);
+  stiffness_label_ = new QLabel(tr("Stiffness"), this);
+  form->addRow(stiffness_label_, stiffness_);
   note_ = new QLabel(this);
   note_->setWordWrap(true);
   form->addRow(note_);
@@ -61,7 +66,7 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
 
   connect(preset_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
     if (updating_ || index < 0) return;
-    const auto p = author::preset_defaults(kPresets[index]);
+    const auto p = defaults(kPresets[index]);
     rows_ = p.rows;
     cols_ = p.cols;
     {
@@ -71,7 +76,17 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
       width_->setValue(p.width * 1e3);
       length_->setValue(p.length * 1e3);
       thickness_->setValue(p.thickness * 1e3);
-      stiffness_->setValue(p.stiffness);
+      show_tissue(p);
+    }
+    emit_params();
+  });
+  // Another unit: the preset's default tissue in it (a modulus and a stiffness are not
+  // one number in two units: the stiffness also follows the thickness).
+  connect(tissue_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
+    if (updating_ || index < 0) return;
+    {
+      const QSignalBlocker block(stiffness_);
+      show_tissue(defaults(kPresets[std::max(0, preset_->currentIndex())]));
     }
     emit_params();
   });
@@ -87,14 +102,42 @@ void InstructorPresetPanel::set_limits(author::Preset preset) {
   width_->setRange(l.width[0] * 1e3, l.width[1] * 1e3);
   length_->setRange(l.length[0] * 1e3, l.length[1] * 1e3);
   thickness_->setRange(l.thickness[0] * 1e3, l.thickness[1] * 1e3);
-  stiffness_->setRange(l.stiffness[0], l.stiffness[1]);
+  if (tissue_in_kpa()) {
+    stiffness_->setRange(l.modulus[0] * 1e-3, l.modulus[1] * 1e-3);
+  } else {
+    stiffness_->setRange(l.stiffness[0], l.stiffness[1]);
+  }
+}
+
+bool InstructorPresetPanel::tissue_in_kpa() const { return tissue_->currentData().toString() == "kpa"; }
+
+author::PresetParams InstructorPresetPanel::defaults(author::Preset preset) const {
+  return tissue_in_kpa() ? author::preset_defaults_in_kpa(preset) : author::preset_defaults(preset);
+}
+
+void InstructorPresetPanel::show_tissue(const author::PresetParams& p) {
+  const bool kpa = p.modulus > 0.0;
+  {
+    const QSignalBlocker block(tissue_);
+    tissue_->setCurrentIndex(tissue_->findData(QString(kpa ? "kpa" : "nm")));
+  }
+  set_limits(p.preset);
+  stiffness_label_->setText(kpa ? tr("Modulus") : tr("Stiffness"));
+  stiffness_->setSuffix(kpa ? tr(" kPa") : tr(" N/m"));
+  stiffness_->setDecimals(kpa ? 2 : 0);
+  stiffness_->setSingleStep(kpa ? 0.25 : 1.0);
+  stiffness_->setToolTip(kpa ? tr("Young's modulus of the tissue, uniform; the stiffness a fingertip meets also "
+                                  "grows where the tissue is thin over its support")
+                             : tr("Tissue stiffness per skeleton point (the breast's glandular centre; its fatty "
+                                  "periphery is 0.4 times this)"));
+  stiffness_->setValue(kpa ? p.modulus * 1e-3 : p.stiffness);
 }
 
 void InstructorPresetPanel::show_params(const std::optional<author::PresetParams>& params) {
   updating_ = true;
   const QSignalBlocker blockers[] = {QSignalBlocker(preset_), QSignalBlocker(width_), QSignalBlocker(length_),
                                      QSignalBlocker(thickness_), QSignalBlocker(stiffness_)};
-  const auto p = params ? *params : author::preset_defaults(author::Preset::Breast);
+  const auto p = params ? *params : author::preset_defaults_in_kpa(author::Preset::Breast);
   for (int k = 0; k < 4; ++k) {
     if (kPresets[k] == p.preset) preset_->setCurrentIndex(k);
   }
@@ -102,7 +145,7 @@ void InstructorPresetPanel::show_params(const std::optional<author::PresetParams
   width_->setValue(p.width * 1e3);
   length_->setValue(p.length * 1e3);
   thickness_->setValue(p.thickness * 1e3);
-  stiffness_->setValue(p.stiffness);
+  show_tissue(p);
   rows_ = p.rows;
   cols_ = p.cols;
   note_->setText(params ? QString() : tr("This case was not made from a preset: changing these replaces its bodies."));
@@ -114,7 +157,12 @@ author::PresetParams InstructorPresetPanel::params() const {
   p.width = width_->value() * 1e-3;
   p.length = length_->value() * 1e-3;
   p.thickness = thickness_->value() * 1e-3;
-  p.stiffness = stiffness_->value();
+  if (tissue_in_kpa()) {
+    p.modulus = stiffness_->value() * 1e3;
+  } else {
+    p.modulus = 0.0;
+    p.stiffness = stiffness_->value();
+  }
   if (rows_ > 0) p.rows = rows_;
   if (cols_ > 0) p.cols = cols_;
   return p;

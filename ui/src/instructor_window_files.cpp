@@ -63,7 +63,7 @@ bool InstructorWindow::save_as(const QString& path) {
 
 void InstructorWindow::new_case(author::Preset preset) {
   commit_pending();  // the typed title must not be applied to the new case later
-  draft_ = author::CaseDraft(author::preset_defaults(preset));
+  draft_ = author::CaseDraft(preset_panel_->defaults(preset));
   drawn_bodies_ = nlohmann::json();
   refresh();
   frame_camera();

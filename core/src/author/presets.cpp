@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "palpa/mat/layer_stiffness.hpp"
+
 namespace palpa::author {
 namespace {
 
@@ -25,6 +27,14 @@ constexpr double kProstateDeepMin = 0.20;
 constexpr double kPatch = kPunch * 3e3;
 // Generic slab: the 7 kPa silicone of the phantom pair in use: 140 N/m.
 constexpr double kSlab = kPunch * 7e3;
+// Moduli for presets in kPa (preset_defaults_in_kpa). Breast fat and fibroglandular
+// tissue are about equally stiff at small strain, 3.25 and 3.24 kPa (Samani 2007), so the
+// breast in kPa is uniform: its stiffness still grows where it is thin (the layer over the
+// chest wall). Skin patch: subcutaneous fat. Prostate: Gerling's normal gland. Slab: the
+// phantom's silicone.
+constexpr double kFatModulus = 3.25e3;       // Pa
+constexpr double kProstateModulus = 21e3;    // Pa
+constexpr double kSiliconeModulus = 7e3;     // Pa
 // Abdomen curvature: the patch's skeleton is a cylinder of this radius across its width.
 constexpr double kAbdomenRadius = 0.2;  // m
 
@@ -105,14 +115,29 @@ PresetParams preset_defaults(Preset preset) {
   return {};
 }
 
+PresetParams preset_defaults_in_kpa(Preset preset) {
+  PresetParams p = preset_defaults(preset);
+  switch (preset) {
+    case Preset::Breast: p.modulus = kFatModulus; break;
+    case Preset::Prostate: p.modulus = kProstateModulus; break;
+    case Preset::Patch: p.modulus = kFatModulus; break;
+    case Preset::Slab: p.modulus = kSiliconeModulus; break;
+  }
+  return p;
+}
+
 PresetLimits preset_limits(Preset preset) {
   switch (preset) {
     // A taller or narrower dome's top contour bulges beyond its base by more than 2 %.
-    case Preset::Breast: return {{0.10, 0.20}, {0.10, 0.22}, {0.02, 0.06}, {60.0, 2000.0}, {5, 33}};
+    // Moduli: 1 kPa (the softest fat) to 50 kPa (Krouskop 1998's glandular tissue
+    // pre-compressed 20 %).
+    case Preset::Breast: return {{0.10, 0.20}, {0.10, 0.22}, {0.02, 0.06}, {60.0, 2000.0}, {1e3, 50e3}, {5, 33}};
     // 21-82 kPa gland (Gerling 2010) and a little either side.
-    case Preset::Prostate: return {{0.03, 0.06}, {0.025, 0.05}, {0.02, 0.045}, {400.0, 1700.0}, {5, 33}};
-    case Preset::Patch: return {{0.10, 0.30}, {0.10, 0.30}, {0.01, 0.05}, {20.0, 600.0}, {5, 33}};
-    case Preset::Slab: return {{0.04, 0.30}, {0.04, 0.30}, {0.01, 0.08}, {20.0, 5000.0}, {5, 33}};
+    case Preset::Prostate:
+      return {{0.03, 0.06}, {0.025, 0.05}, {0.02, 0.045}, {400.0, 1700.0}, {15e3, 100e3}, {5, 33}};
+    case Preset::Patch: return {{0.10, 0.30}, {0.10, 0.30}, {0.01, 0.05}, {20.0, 600.0}, {1e3, 30e3}, {5, 33}};
+    // From soft gels to the 180 kPa inclusion silicone of the phantom pair in use.
+    case Preset::Slab: return {{0.04, 0.30}, {0.04, 0.30}, {0.01, 0.08}, {20.0, 5000.0}, {1e3, 250e3}, {5, 33}};
   }
   return {};
 }
@@ -126,7 +151,11 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
   check("width", p.width, limits.width);
   check("length", p.length, limits.length);
   check("thickness", p.thickness, limits.thickness);
-  check("stiffness", p.stiffness, limits.stiffness);
+  if (p.modulus > 0.0) {
+    check("modulus", p.modulus, limits.modulus);
+  } else {
+    check("stiffness", p.stiffness, limits.stiffness);
+  }
   check_grid("rows", p.rows, limits.grid);
   check_grid("cols", p.cols, limits.grid);
 
@@ -174,6 +203,11 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
       g.stiffness.push_back(k);
     }
   }
+  if (p.modulus > 0.0) {
+    g.modulus.assign(g.radius.size(), p.modulus);
+    g.stiffness = mat::layer_stiffness_field(g.modulus, g.radius, g.poisson);
+    g.force_model = mat::ForceModel::Calibrated;
+  }
   return g;
 }
 
@@ -217,9 +251,11 @@ io::CaseFile make_preset_case(const PresetParams& params, const std::string& tit
 }
 
 nlohmann::json to_json(const PresetParams& p) {
-  return {{"name", to_string(p.preset)}, {"width", p.width},         {"length", p.length},
-          {"thickness", p.thickness},    {"stiffness", p.stiffness}, {"rows", p.rows},
-          {"cols", p.cols}};
+  nlohmann::json out = {{"name", to_string(p.preset)}, {"width", p.width},         {"length", p.length},
+                        {"thickness", p.thickness},    {"stiffness", p.stiffness}, {"rows", p.rows},
+                        {"cols", p.cols}};
+  if (p.modulus > 0.0) out["modulus"] = p.modulus;
+  return out;
 }
 
 std::optional<PresetParams> preset_from_json(const nlohmann::json& v) {
@@ -235,6 +271,10 @@ std::optional<PresetParams> preset_from_json(const nlohmann::json& v) {
   for (auto [key, field] : {std::pair{"rows", &p.rows}, std::pair{"cols", &p.cols}}) {
     if (!v.contains(key) || !v[key].is_number_integer()) return std::nullopt;
     *field = v[key].get<int>();
+  }
+  if (v.contains("modulus")) {
+    if (!v["modulus"].is_number() || !(v["modulus"].get<double>() > 0.0)) return std::nullopt;
+    p.modulus = v["modulus"].get<double>();
   }
   return p;
 }

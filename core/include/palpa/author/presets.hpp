@@ -30,6 +30,10 @@ struct PresetParams {
   double stiffness = 0.0;  ///< N/m per skeleton point (the breast's glandular centre; uniform otherwise)
   int rows = 0;            ///< grid points along u; 0: the preset's default
   int cols = 0;            ///< grid points along v; 0: the preset's default
+  /// Pa; > 0: the tissue is given by this Young's modulus, uniform (written as "modulus",
+  /// the calibrated force law, the stiffness derived over the local thickness) and
+  /// `stiffness` is ignored; 0: by `stiffness` (N/m, the paper's springs).
+  double modulus = 0.0;
 
   bool operator==(const PresetParams&) const = default;
 };
@@ -40,10 +44,16 @@ struct PresetLimits {
   double length[2];
   double thickness[2];
   double stiffness[2];
+  double modulus[2];  ///< Pa
   int grid[2];  ///< rows and cols
 };
 
 PresetParams preset_defaults(Preset preset);
+/// The defaults with the tissue given as its Young's modulus from the literature
+/// (docs/case-authoring.md, "Tissue presets in kPa"): breast and skin-patch fat 3.25 kPa
+/// (Samani, Zubovits and Plewes 2007), a normal prostate 21 kPa (Gerling et al. 2009), the
+/// 7 kPa silicone of a phantom slab. What the instructor window starts new cases with.
+PresetParams preset_defaults_in_kpa(Preset preset);
 PresetLimits preset_limits(Preset preset);
 
 /// The body of a preset, its id the preset's name. Throws std::invalid_argument naming the
@@ -67,8 +77,9 @@ io::CaseFile make_preset_case(const PresetParams& params, const std::string& tit
 /// points; `model` is written as the body's "force_model". Throws as make_preset_body.
 io::CaseFile make_modulus_slab(double width, double thickness, double modulus, mat::ForceModel model);
 
-/// {"name", "width", "length", "thickness", "stiffness", "rows", "cols"} and back;
-/// preset_from_json gives nothing for anything malformed.
+/// {"name", "width", "length", "thickness", "stiffness", "rows", "cols"} (and "modulus"
+/// when the tissue is given by it) and back; preset_from_json gives nothing for anything
+/// malformed.
 nlohmann::json to_json(const PresetParams& params);
 std::optional<PresetParams> preset_from_json(const nlohmann::json& value);
 

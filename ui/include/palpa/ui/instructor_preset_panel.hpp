@@ -34,6 +34,9 @@ class InstructorPresetPanel : public QGroupBox {
   /// stiffness in N/m; the values reset to the unit's defaults when the unit changes.
   void set_map_in_kpa(bool kpa);
   bool map_in_kpa() const { return map_in_kpa_; }
+  /// A preset's defaults with the tissue in the unit the tissue box shows (File > New
+  /// keeps the unit the instructor chose).
+  author::PresetParams defaults(author::Preset preset) const;
   /// Marks the body controls as holding a problem (red frame) with `tip` as the reason.
   void set_problem(const QString& tip);
 
@@ -41,7 +44,11 @@ class InstructorPresetPanel : public QGroupBox {
   QDoubleSpinBox* width_box() const { return width_; }
   QDoubleSpinBox* length_box() const { return length_; }
   QDoubleSpinBox* thickness_box() const { return thickness_; }
+  /// The tissue's modulus (kPa) or stiffness (N/m), as tissue_box says.
   QDoubleSpinBox* stiffness_box() const { return stiffness_; }
+  /// How the tissue is given: "kpa" (Young's modulus, the calibrated force law) or "nm"
+  /// (stiffness per skeleton point, the paper's springs).
+  QComboBox* tissue_box() const { return tissue_; }
   QPushButton* import_button() const { return import_; }
 
  signals:
@@ -50,6 +57,9 @@ class InstructorPresetPanel : public QGroupBox {
 
  private:
   void set_limits(author::Preset preset);
+  bool tissue_in_kpa() const;
+  /// The tissue value of p in the shown unit (kPa or N/m), and its label.
+  void show_tissue(const author::PresetParams& p);
   void emit_params();
 
   QComboBox* preset_ = nullptr;
@@ -57,6 +67,8 @@ class InstructorPresetPanel : public QGroupBox {
   QDoubleSpinBox* length_ = nullptr;
   QDoubleSpinBox* thickness_ = nullptr;
   QDoubleSpinBox* stiffness_ = nullptr;
+  QComboBox* tissue_ = nullptr;
+  QLabel* stiffness_label_ = nullptr;
   QDoubleSpinBox* map_min_ = nullptr;
   QDoubleSpinBox* map_max_ = nullptr;
   bool map_in_kpa_ = false;
