@@ -185,6 +185,7 @@ void InstructorPresetPanel::set_map_in_kpa(bool kpa) {
   map_max_->setValue(kpa ? 30.0 : 600.0);
   map_min_->setToolTip(what + tr(" of black pixels"));
   map_max_->setToolTip(what + tr(" of white pixels"));
+  import_->setText(kpa ? tr("Import modulus map...") : tr("Import stiffness map..."));
 }
 
 double InstructorPresetPanel::map_k_min() const { return map_min_->value(); }

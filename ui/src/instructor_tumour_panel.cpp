@@ -45,7 +45,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   help->setWordWrap(true);
   layout->addWidget(help);
   table_ = new QTableWidget(0, 4, this);
-  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("Stiffness"), tr("Random")});
+  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("Material"), tr("Random")});
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
