@@ -508,7 +508,8 @@ std::vector<std::pair<std::string, palpa::io::CaseFile>> long_form_cases() {
   using palpa::author::Preset;
   for (const Preset p : {Preset::Breast, Preset::Prostate, Preset::Patch, Preset::Slab}) {
     const auto params = palpa::author::preset_defaults(p);
-    // As the instructor window makes it: the preset's body and its organ's scoring.
+    // As the instructor window makes it (tissue in N/m, as a new window starts): the
+    // preset's body and its organ's scoring.
     auto file = palpa::author::make_preset_case(params, std::string("preset ") + palpa::author::to_string(p));
     // Off-centre, a third of the way out; the radius a fifth of the thickness (a 4-10 mm
     // nodule), five times the tissue's stiffness (carcinoma-like: docs/case-format.md).
