@@ -88,6 +88,18 @@ bool has_problem(const InstructorWindow& window, const QString& where) {
   return false;
 }
 
+/// A 64 x 32 grayscale ramp, black at the left to white at the right.
+QImage ramp_along_x() {
+  QImage ramp(64, 32, QImage::Format_Grayscale8);
+  for (int y = 0; y < ramp.height(); ++y) {
+    for (int x = 0; x < ramp.width(); ++x) {
+      const int v = static_cast<int>(std::lround(x * 255.0 / 63.0));
+      ramp.setPixelColor(x, y, QColor(v, v, v));
+    }
+  }
+  return ramp;
+}
+
 void write_text(const QString& path, const std::string& text) { std::ofstream(path.toStdString()) << text; }
 
 std::string read_text(const QString& path) {
@@ -404,15 +416,8 @@ class InstructorWindowTest : public QObject {
              qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
 
     // A ramp along x (the grid rows) from 4 to 24 kPa: skeleton row i gets 4 + 20 i / 10 kPa.
-    QImage ramp(64, 32, QImage::Format_Grayscale8);
-    for (int y = 0; y < ramp.height(); ++y) {
-      for (int x = 0; x < ramp.width(); ++x) {
-        const int v = static_cast<int>(std::lround(x * 255.0 / 63.0));
-        ramp.setPixelColor(x, y, QColor(v, v, v));
-      }
-    }
     const QString png = dir.filePath("ramp.png");
-    QVERIFY(ramp.save(png));
+    QVERIFY(ramp_along_x().save(png));
     QDoubleSpinBox* black = nullptr;
     QDoubleSpinBox* white = nullptr;
     for (auto* b : window.preset_panel()->findChildren<QDoubleSpinBox*>()) {
@@ -442,15 +447,8 @@ class InstructorWindowTest : public QObject {
   // 100 + 400 i / 10 (to the 8-bit quantization).
   void stiffnessImageSetsTheStiffness() {
     QTemporaryDir dir;
-    QImage ramp(64, 32, QImage::Format_Grayscale8);
-    for (int y = 0; y < ramp.height(); ++y) {
-      for (int x = 0; x < ramp.width(); ++x) {
-        const int v = static_cast<int>(std::lround(x * 255.0 / 63.0));
-        ramp.setPixelColor(x, y, QColor(v, v, v));
-      }
-    }
     const QString png = dir.filePath("ramp.png");
-    QVERIFY(ramp.save(png));
+    QVERIFY(ramp_along_x().save(png));
     InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
     show(window);
     // The map's range: black and white stiffness.
