@@ -13,6 +13,7 @@ packages=(
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
   pkg-config libhidapi-dev libusb-1.0-0-dev
   desktop-file-utils  # packaging test: desktop-file-validate on the menu entry (dpkg-dev comes with build-essential)
+  gmsh calculix-ccx python3-numpy python3-scipy  # the finite-element reference (tools/fem) and its tests
 )
 
 missing=()
