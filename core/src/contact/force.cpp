@@ -84,9 +84,13 @@ double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& ou
 double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model) {
   if (!(q > 1.0) || !(h > 0.0) || !(r > 0.0)) return 0.0;
   const double a = model.pad_radius;
-  const double gap = std::max(s - r, 0.05 * h);  // the fit's domain: 5 % of the layer at least
+  // The fit's domain: at least 5 % of the layer between the inclusion and the skin or base.
+  const double depth = std::clamp(s, 0.0, 0.95 * h);
+  const double gap = std::max(s - r, 0.05 * h);
+  const double along_axis = 1.0 + (depth / (model.depth_knee * a)) * (depth / (model.depth_knee * a));
   return model.a_scale * (q - 1.0) / (q + model.ratio_knee) * std::pow(r / a, model.size_power) *
-         std::exp(-model.depth_decay * std::max(s, 0.0) / h) * std::pow(gap / a, -model.gap_power);
+         std::pow(along_axis, -model.depth_power) * std::pow((h - depth) / h, model.base_power) *
+         std::pow(h / a, model.layer_power) * std::pow(gap / a, -model.gap_power);
 }
 
 namespace {
