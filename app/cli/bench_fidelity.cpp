@@ -1,5 +1,7 @@
 #include "bench_fidelity.hpp"
 
+#include "bench_fidelity_contrast.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -42,9 +44,7 @@ constexpr Reference kReferences[] = {
 
 constexpr double kSlabWidth = 0.12;  // m: the 60 mm-radius disc stands in for a 120 mm slab
 constexpr double kTolerance = 0.10;  // the calibrated law's mark: within 10 % of the FEM
-constexpr const char* kContrastFile = "contrast_slab40_E5k_linear.csv";
-// The contrast mark: within 20 % of C - 1, or 0.02 where C - 1 is small.
-bool contrast_met(double model, double fem) { return std::abs(model - fem) <= std::max(0.2 * (fem - 1.0), 0.02); }
+constexpr double kHalfWidthTolerance = 0.003;  // m: the lateral half-width's mark
 
 struct Curve {
   std::vector<double> depth, force;  // m, N; without the 0,0 row
@@ -76,15 +76,6 @@ Curve read_curve(const std::filesystem::path& path) {
   return c;
 }
 
-// |F| (N) of a press straight down into the middle of the slab's top, as the engine probes.
-double centre_force(const scene::Scene& scene, double depth) {
-  std::array<double, 3> top{};
-  scene.body(0).body.top().evaluate(0.5, 0.5, top);
-  auto state = scene.make_state();
-  const scene::ProbeOptions options;  // the engine's defaults: shear springs requested
-  return scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, options).force.total.norm();
-}
-
 struct Row {
   const Reference* reference;
   mat::ForceModel law;
@@ -97,80 +88,10 @@ Row compare(const Reference& r, const Curve& fem, mat::ForceModel law) {
   const auto scene = scene::Scene::build(author::make_modulus_slab(kSlabWidth, r.thickness, r.modulus, law), r.file);
   Row row{&r, law, fem, {}, 0.0};
   for (std::size_t k = 0; k < fem.depth.size(); ++k) {
-    row.palpa.push_back(centre_force(scene, fem.depth[k]));
+    row.palpa.push_back(fidelity::centre_force(scene, fem.depth[k]));
     if (fem.force[k] > 0.0) row.worst = std::max(row.worst, std::abs(row.palpa.back() / fem.force[k] - 1.0));
   }
   return row;
-}
-
-// One inclusion of the on-axis FEM sweep and what Palpa makes of it.
-struct ContrastRow {
-  double radius, depth, ratio, fem;  // m, m (centre below the skin), E_t / E, F_with / F_without
-  double calibrated = 0.0;  // the tumour in Pa (contrast model), at a 2 mm press
-  double paper = 0.0;       // the paper's law with the tumour as a spring of 0.02 m x E_t, at 4 mm
-};
-
-std::vector<ContrastRow> read_sweep(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read (give --reference DIR)");
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("inclusion_radius_m,", 0) != 0) {
-    throw std::runtime_error(path.string() + ": line 1: expected the header inclusion_radius_m,...");
-  }
-  std::vector<ContrastRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    ContrastRow r{};
-    double force = 0.0, twin = 0.0;
-    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &r.radius, &r.depth, &r.ratio, &force, &twin, &r.fem) != 6 ||
-        !(r.radius > 0.0) || !(r.fem > 0.0)) {
-      throw std::runtime_error(path.string() + ": line " + std::to_string(number) + ": expected six numbers");
-    }
-    rows.push_back(r);
-  }
-  return rows;
-}
-
-// The 40 mm slab of 5 kPa under `law`, with one tumour on the axis under its centre (in Pa,
-// or as a spring of `stiffness` N/m when that is above 0).
-scene::Scene slab_with_tumour(const ContrastRow& r, mat::ForceModel law, double stiffness) {
-  io::CaseFile file = author::make_modulus_slab(kSlabWidth, 0.040, 5000.0, law);
-  const auto plain = scene::Scene::build(file, "slab");
-  std::array<double, 3> top{};
-  plain.body(0).body.top().evaluate(0.5, 0.5, top);
-  mat::Tumour t;
-  t.body = file.bodies[0].id;
-  t.center = {top[0], top[1], top[2] - r.depth};
-  t.radius = r.radius;
-  if (stiffness > 0.0) t.stiffness = stiffness; else t.modulus = r.ratio * 5000.0;
-  file.tumours.push_back(t);
-  return scene::Scene::build(io::parse_case(io::to_json(file).dump(), "slab with a tumour"), "slab with a tumour");
-}
-
-void compare_contrast(std::vector<ContrastRow>& rows) {
-  const auto calibrated = scene::Scene::build(author::make_modulus_slab(kSlabWidth, 0.040, 5000.0,
-                                                                         mat::ForceModel::Calibrated), "slab");
-  const auto paper = scene::Scene::build(author::make_modulus_slab(kSlabWidth, 0.040, 5000.0, mat::ForceModel::Paper),
-                                         "slab");
-  for (auto& r : rows) {
-    r.calibrated = centre_force(slab_with_tumour(r, mat::ForceModel::Calibrated, 0.0), 0.002) /
-                   centre_force(calibrated, 0.002);
-    // The half-space rule of docs/case-authoring.md for a tumour's spring: k_t = 0.02 m x E_t.
-    r.paper = centre_force(slab_with_tumour(r, mat::ForceModel::Paper, 0.02 * r.ratio * 5000.0), 0.004) /
-              centre_force(paper, 0.004);
-  }
-}
-
-void write_contrast_csv(const std::vector<ContrastRow>& rows, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  out << "inclusion_radius_m,inclusion_depth_m,modulus_ratio,fem_contrast,calibrated_contrast,paper_contrast\n";
-  for (const auto& r : rows) {
-    char line[200];
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%g,%.5f,%.5f,%.5f\n", r.radius, r.depth, r.ratio, r.fem, r.calibrated,
-                  r.paper);
-    out << line;
-  }
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
 void write_csv(const std::vector<Row>& rows, const std::filesystem::path& path) {
@@ -208,22 +129,10 @@ void write_png(const std::vector<Row>& rows, const std::filesystem::path& path) 
   plot::save_png(p, path);
 }
 
-}  // namespace
 
-int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::filesystem::path& out_dir) {
-  std::vector<Row> rows;
-  std::vector<ContrastRow> contrast;
-  try {
-    for (const auto& r : kReferences) {
-      const Curve fem = read_curve(reference_dir / r.file);
-      for (const auto law : {mat::ForceModel::Calibrated, mat::ForceModel::Paper}) rows.push_back(compare(r, fem, law));
-    }
-    contrast = read_sweep(reference_dir / kContrastFile);
-    compare_contrast(contrast);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
-    return 2;
-  }
+// The force curves: worst error per reference and law; true when the calibrated law meets
+// the mark on every one.
+bool print_forces(const std::vector<Row>& rows, const std::filesystem::path& reference_dir) {
   std::printf("Palpa on the finite-element reference layers (%s), pressed at the centre; the layer given in Pa.\n",
               reference_dir.c_str());
   std::printf("%-38s %9s | %22s | %22s\n", "reference", "reach", "calibrated: worst error", "paper's law: worst error");
@@ -236,35 +145,110 @@ int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::fi
                 100.0 * reach / c.reference->thickness, 100.0 * c.worst, 100.0 * p.worst);
     met = met && c.worst <= kTolerance;
   }
-  std::printf("\nTumour contrast F_with / F_without on the pad's axis, 40 mm of 5 kPa (%s): the tumour in Pa at a 2 mm "
-              "press; the paper's law with a tumour spring of 0.02 m x E_t at 4 mm.\n", kContrastFile);
-  std::printf("%9s %11s %6s | %8s | %10s %7s | %10s %7s\n", "radius", "centre", "ratio", "FEM", "calibrated", "error",
-              "paper's", "error");
-  int contrast_missed = 0, paper_missed = 0;
-  for (const auto& r : contrast) {
-    const bool ok = contrast_met(r.calibrated, r.fem);
-    contrast_missed += ok ? 0 : 1;
-    paper_missed += contrast_met(r.paper, r.fem) ? 0 : 1;
-    std::printf("%6.0f mm %5.0f mm deep %5gx | %8.4f | %10.4f %+6.3f%s | %10.4f %+7.3f\n", r.radius * 1e3, r.depth * 1e3,
-                r.ratio, r.fem, r.calibrated, r.calibrated - r.fem, ok ? " " : "!", r.paper, r.paper - r.fem);
+  return met;
+}
+
+std::string onset_text(double onset) {
+  if (onset < 0.0) return "never";
+  char text[16];
+  std::snprintf(text, sizeof text, "%.2f mm", onset * 1e3);
+  return text;
+}
+
+std::string half_width_text(double width, double fem) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%.1f mm (%+.1f mm)", width * 1e3, (width - fem) * 1e3);
+  return text;
+}
+
+// The on-axis contrast and onset table; true when the calibrated law meets both marks on
+// every inclusion.
+bool print_on_axis(const std::vector<fidelity::Inclusion>& rows) {
+  std::printf("\nTumour contrast F_with / F_without on the pad's axis, layers of 5 kPa (contrast_slab*_E5k_linear.csv): "
+              "the tumour in Pa at a 2 mm press; the paper's law with a tumour spring of 0.02 m x E_t at 4 mm. Onset: "
+              "the first press with contrast >= 1.10 (up to 40 %% of the layer).\n");
+  std::printf("%6s %7s %10s %5s | %7s %8s | %10s %7s %8s | %8s %7s %8s\n", "layer", "radius", "centre", "ratio", "FEM",
+              "onset", "calibrated", "error", "onset", "paper's", "error", "onset");
+  std::size_t contrast_ok = 0, onset_ok = 0, paper_contrast_ok = 0, paper_onset_ok = 0;
+  for (const auto& r : rows) {
+    const bool c_ok = fidelity::contrast_met(r.calibrated, r.fem);
+    const bool o_ok = fidelity::onset_met(r.calibrated_onset, r.fem_onset);
+    contrast_ok += c_ok;
+    onset_ok += o_ok;
+    paper_contrast_ok += fidelity::contrast_met(r.paper, r.fem);
+    paper_onset_ok += fidelity::onset_met(r.paper_onset, r.fem_onset);
+    std::printf("%3.0f mm %4.0f mm %5.0f mm deep %4gx | %7.4f %8s | %10.4f %+6.3f%s %8s%s | %8.4f %+7.3f %8s\n",
+                r.thickness * 1e3, r.radius * 1e3, r.depth * 1e3, r.ratio, r.fem, onset_text(r.fem_onset).c_str(),
+                r.calibrated, r.calibrated - r.fem, c_ok ? " " : "!", onset_text(r.calibrated_onset).c_str(),
+                o_ok ? " " : "!", r.paper, r.paper - r.fem, onset_text(r.paper_onset).c_str());
   }
-  std::printf("contrast within 20 %% of C - 1 or 0.02: calibrated %zu of %zu, paper's law %zu of %zu\n",
-              contrast.size() - static_cast<std::size_t>(contrast_missed), contrast.size(),
-              contrast.size() - static_cast<std::size_t>(paper_missed), contrast.size());
-  met = met && contrast_missed == 0;
+  std::printf("contrast within 20 %% of C - 1 or 0.02: calibrated %zu of %zu, paper's law %zu of %zu\n", contrast_ok,
+              rows.size(), paper_contrast_ok, rows.size());
+  std::printf("onset within 2 mm (or neither reaching 1.10): calibrated %zu of %zu, paper's law %zu of %zu\n", onset_ok,
+              rows.size(), paper_onset_ok, rows.size());
+  return contrast_ok == rows.size() && onset_ok == rows.size();
+}
+
+// The lateral table: contrast beside the axis and the half-width of the extra force; true
+// when the calibrated law meets the contrast mark at every offset and the half-width mark.
+bool print_lateral(const std::vector<fidelity::Inclusion>& rows) {
+  std::printf("\nBeside the pad's axis, 40 mm of 5 kPa (lateral_slab40_E5k_linear.csv, 3-D FEM): contrast by the "
+              "finger's offset from the tumour, and the half-width of the extra force (where C - 1 halves).\n");
+  bool met = true;
+  for (const auto& g : fidelity::by_inclusion(rows)) {
+    std::printf("r %.0f mm, centre %.0f mm deep, %gx:\n  %9s | %7s | %10s %7s | %8s\n", g[0].radius * 1e3,
+                g[0].depth * 1e3, g[0].ratio, "offset", "FEM", "calibrated", "error", "paper's");
+    for (const auto& r : g) {
+      const bool ok = fidelity::contrast_met(r.calibrated, r.fem);
+      met = met && ok;
+      std::printf("  %6.1f mm | %7.4f | %10.4f %+6.3f%s | %8.4f\n", r.offset * 1e3, r.fem, r.calibrated,
+                  r.calibrated - r.fem, ok ? " " : "!", r.paper);
+    }
+    const double fem = fidelity::half_width(g, fidelity::Source::Fem);
+    const double calibrated = fidelity::half_width(g, fidelity::Source::Calibrated);
+    const double paper = fidelity::half_width(g, fidelity::Source::Paper);
+    const bool ok = calibrated >= 0.0 && std::abs(calibrated - fem) <= kHalfWidthTolerance;
+    met = met && ok;
+    std::printf("  half-width: FEM %.1f mm, calibrated %.1f mm (%+.1f mm%s), paper's %s\n", fem * 1e3,
+                calibrated * 1e3, (calibrated - fem) * 1e3, ok ? "" : ", more than 3 mm off",
+                paper < 0.0 ? "none (nothing felt on the axis)" : half_width_text(paper, fem).c_str());
+  }
+  return met;
+}
+
+}  // namespace
+
+int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::filesystem::path& out_dir) {
+  std::vector<Row> rows;
+  std::vector<fidelity::Inclusion> on_axis, beside;
+  try {
+    for (const auto& r : kReferences) {
+      const Curve fem = read_curve(reference_dir / r.file);
+      for (const auto law : {mat::ForceModel::Calibrated, mat::ForceModel::Paper}) rows.push_back(compare(r, fem, law));
+    }
+    on_axis = fidelity::on_axis(reference_dir);
+    beside = fidelity::beside_axis(reference_dir);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
+    return 2;
+  }
+  bool met = print_forces(rows, reference_dir);
+  met = print_on_axis(on_axis) && met;
+  met = print_lateral(beside) && met;
   try {
     std::filesystem::create_directories(out_dir);
     write_csv(rows, out_dir / "fidelity.csv");
-    write_contrast_csv(contrast, out_dir / "fidelity_contrast.csv");
+    fidelity::write_contrast_csv(on_axis, out_dir / "fidelity_contrast.csv");
+    fidelity::write_lateral_csv(beside, out_dir / "fidelity_lateral.csv");
     write_png(rows, out_dir / "fidelity.png");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
     return 2;
   }
-  std::printf("wrote %s, %s and %s\n", (out_dir / "fidelity.csv").c_str(), (out_dir / "fidelity_contrast.csv").c_str(),
-              (out_dir / "fidelity.png").c_str());
-  std::printf("calibrated law within %.0f %% of every force curve and within the contrast mark on every inclusion: %s\n",
-              100.0 * kTolerance, met ? "yes" : "NO");
+  std::printf("wrote fidelity.csv, fidelity_contrast.csv, fidelity_lateral.csv and fidelity.png into %s\n",
+              out_dir.c_str());
+  std::printf("calibrated law within %.0f %% of every force curve, and within the contrast, onset and half-width marks "
+              "on every inclusion: %s\n", 100.0 * kTolerance, met ? "yes" : "NO");
   return met ? 0 : 1;
 }
 

@@ -129,11 +129,33 @@ class BenchFidelity(unittest.TestCase):
             self.assertGreater(float(paper_10[0]["error"]), 0.10)  # the shear springs overshoot
             with open(os.path.join(d, "fidelity_contrast.csv")) as fh:
                 contrast = list(csv.DictReader(fh))
-            with open(os.path.join(REPO, "data", "reference", "contrast_slab40_E5k_linear.csv")) as fh:
-                self.assertEqual(len(contrast), len(list(csv.DictReader(fh))))
+            swept = 0
+            for mm in (20, 30, 40):
+                with open(os.path.join(REPO, "data", "reference", f"contrast_slab{mm}_E5k_linear.csv")) as fh:
+                    n = len(list(csv.DictReader(fh)))
+                swept += n
+                self.assertEqual(len([r for r in contrast if abs(float(r["thickness_m"]) - mm / 1000) < 1e-9]), n, mm)
+            self.assertEqual(len(contrast), swept)
             for r in contrast:
                 fem, model = float(r["fem_contrast"]), float(r["calibrated_contrast"])
                 self.assertLessEqual(abs(model - fem), max(0.2 * (fem - 1.0), 0.02), r)
+                # Onset: the first press with contrast >= 1.10; the linear FEM's is at first touch or never.
+                self.assertEqual(r["fem_onset_m"] == "", fem < 1.10, r)
+                if r["fem_onset_m"] != "":
+                    self.assertEqual(float(r["fem_onset_m"]), 0.0)
+                self.assertEqual(r["calibrated_onset_m"] == "", r["fem_onset_m"] == "", r)
+                if r["calibrated_onset_m"] != "":
+                    self.assertLessEqual(float(r["calibrated_onset_m"]), 0.002, r)
+            with open(os.path.join(d, "fidelity_lateral.csv")) as fh:
+                lateral = list(csv.DictReader(fh))
+            with open(os.path.join(REPO, "data", "reference", "lateral_slab40_E5k_linear.csv")) as fh:
+                reference = list(csv.DictReader(fh))
+            self.assertEqual(len(lateral), len(reference))
+            for r, ref in zip(lateral, reference):
+                self.assertAlmostEqual(float(r["fem_contrast"]), float(ref["contrast"]), places=4)
+                fem, model = float(r["fem_contrast"]), float(r["calibrated_contrast"])
+                self.assertLessEqual(abs(model - fem), max(0.2 * (fem - 1.0), 0.02), r)
+            self.assertIn("half-width: FEM", res.stdout)
             with open(os.path.join(d, "fidelity.png"), "rb") as fh:
                 self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
             # A folder without the curves: one line naming the file, exit 2.

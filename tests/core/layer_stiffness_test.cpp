@@ -247,7 +247,7 @@ TEST(TissueInKpa, ATumourInPaIsFeltWithTheFemsContrast) {
 TEST(TissueInKpa, ATumourInPaFadesSmoothlyBesideTheFinger) {
   // A slide across a 10 mm tumour 15 mm deep at a 3 mm press: the force changes by small
   // steps (C1 falloff, nothing for a device to buzz on) and is the plain layer's once the
-  // finger is a pad radius beyond the tumour's rim.
+  // finger is twice the falloff's half-width away (2 (a + 0.24 s) = 22.2 mm; docs/model.md).
   const auto scene = Scene::build(slab_with_tumour(0.010, 0.015, 5.0), "slab-tumour.json");
   const auto plain = Scene::build(slab_in_kpa(5000.0, mat::ForceModel::Calibrated), "slab.json");
   auto state = scene.make_state();
@@ -259,7 +259,7 @@ TEST(TissueInKpa, ATumourInPaFadesSmoothlyBesideTheFinger) {
     const double x = -0.03 + 0.0002 * k;
     const Vec3 q(top[0] + x, top[1], top[2] - 0.003);
     f.push_back(scene.probe(q, state, {}).force.total.norm());
-    if (std::abs(x) > 0.010 + 0.0075 + 0.001) {
+    if (std::abs(x) > 2.0 * (0.0075 + 0.24 * 0.015) + 0.001) {
       EXPECT_NEAR(f.back(), plain.probe(q, plain_state, {}).force.total.norm(), 1e-9) << x;
     }
   }
@@ -276,6 +276,52 @@ TEST(TissueInKpa, ATumourInPaFadesSmoothlyBesideTheFinger) {
   std::printf("slide across a 10 mm, 5x tumour 15 mm deep: peak %.3f N (%.2fx the plain layer), largest step %.4f N "
               "per 0.2 mm, largest bend %.2f of a step\n",
               peak, peak / f.front(), largest_step, largest_bend / largest_step);
+}
+
+// The slab with the tumour `offset` beside the point pressed (its centre), along x.
+io::CaseFile slab_with_tumour_beside(double radius, double below_skin, double ratio, double offset) {
+  io::CaseFile file = slab_with_tumour(radius, below_skin, ratio);
+  file.tumours.at(0).center[0] += offset;
+  return io::parse_case(io::to_json(file).dump(), "slab-tumour-beside.json");
+}
+
+TEST(TissueInKpa, ATumourInPaFadesBesideTheFingerAsTheThreeDimensionalFemSays) {
+  // data/reference/lateral_slab40_E5k_linear.csv (tools/fem/lateral.py): two inclusions moved
+  // 0-25 mm sideways from under the pad. At every offset the contrast is within the mark, and
+  // C - 1 halves within 3 mm of where the FEM's does.
+  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/reference/lateral_slab40_E5k_linear.csv");
+  std::string line;
+  std::getline(in, line);
+  const auto plain = Scene::build(slab_in_kpa(5000.0, mat::ForceModel::Calibrated), "slab.json");
+  struct Point { double offset, fem, palpa; };
+  std::vector<std::vector<Point>> inclusions;
+  double last_radius = -1.0, last_depth = -1.0;
+  while (std::getline(in, line)) {
+    double r = 0, s = 0, q = 0, offset = 0, f = 0, twin = 0, c = 0;
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r, &s, &q, &offset, &f, &twin, &c) != 7) continue;
+    if (r != last_radius || s != last_depth) inclusions.emplace_back();
+    last_radius = r;
+    last_depth = s;
+    const auto scene = Scene::build(slab_with_tumour_beside(r, s, q, offset), "slab-tumour.json");
+    const double palpa = centre_press(scene, 0.002) / centre_press(plain, 0.002);
+    EXPECT_LE(std::abs(palpa - c), std::max(0.20 * (c - 1.0), 0.02)) << "r " << r << " offset " << offset;
+    inclusions.back().push_back({offset, c - 1.0, palpa - 1.0});
+  }
+  ASSERT_EQ(inclusions.size(), 2u);
+  auto half_width = [](const std::vector<Point>& g, double Point::*extra) {
+    const double half = 0.5 * (g.front().*extra);
+    for (std::size_t k = 1; k < g.size(); ++k) {
+      const double a = g[k - 1].*extra, b = g[k].*extra;
+      if (a > half && b <= half) return g[k - 1].offset + (a - half) / (a - b) * (g[k].offset - g[k - 1].offset);
+    }
+    return g.back().offset;
+  };
+  for (const auto& g : inclusions) {
+    ASSERT_GE(g.size(), 8u);
+    const double fem = half_width(g, &Point::fem), palpa = half_width(g, &Point::palpa);
+    EXPECT_NEAR(palpa, fem, 0.003);
+    std::printf("lateral half-width: FEM %.1f mm, Palpa %.1f mm\n", fem * 1e3, palpa * 1e3);
+  }
 }
 
 TEST(TissueInKpa, ATumourInPaNeedsItsBodyInPa) {

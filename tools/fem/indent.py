@@ -25,7 +25,8 @@ Indenters (all rigid and frictionless):
           1 mm), pressed on with penalty contact, so the skin can wrap the
           rounded edge. Slow with NLGEOM (in a trial it reached 6 mm on a
           40 mm neo-Hookean layer in 75 s).
-  sphere  a sphere of radius Rs (default 8 mm), penalty contact.
+  sphere  a finger: a sphere of radius Rs (default 8 mm) on a cylinder of the
+          same radius, penalty contact; presses up to 1.5 Rs deep.
 The contact tools are elastic bodies 1000x stiffer than the layer whose top
 edge is displaced; contact is surface to surface, without friction.
 
@@ -165,8 +166,8 @@ def check_options(p, o):
         p.error("--punch-radius must be below half of --radius")
     if o.indenter == "pad" and o.edge_radius >= 0.5 * o.punch_radius:
         p.error("--edge-radius must be below half of --punch-radius")
-    if o.indenter == "sphere" and o.max_depth >= 0.5 * o.sphere_radius:
-        p.error("--max-depth must be below half of --sphere-radius")
+    if o.indenter == "sphere" and o.max_depth >= 1.5 * o.sphere_radius:
+        p.error("--max-depth must be below 1.5 x --sphere-radius")
     if o.indenter == "sphere" and o.sphere_radius >= 0.5 * o.radius:
         p.error("--sphere-radius must be below half of --radius")
     if o.pin_edge and o.indenter != "flat":
@@ -197,8 +198,9 @@ def is_nonlinear(o):
 # geometry and mesh (gmsh .geo, built-in kernel; x = r, y = z, skin at y = 0)
 
 def sphere_contact_radius(o):
-    """Hertz-like contact radius at the final depth, with a 1.5 margin (m)."""
-    return min(1.5 * math.sqrt(2.0 * o.sphere_radius * o.max_depth), 0.9 * o.sphere_radius)
+    """Hertz-like contact radius at the final depth, with a 1.5 margin (m); past the
+    hemisphere the skin wraps on round the finger's side, so up to 1.3 sphere radii."""
+    return min(1.5 * math.sqrt(2.0 * o.sphere_radius * o.max_depth), 1.3 * o.sphere_radius)
 
 
 def skin_zone(o):
@@ -280,16 +282,19 @@ def layer_geometry(g, o, lc):
 def tool_height(o):
     """Height of the driven top edge of the contact tool above the skin (m)."""
     if o.indenter == "sphere":
-        return o.sphere_radius
+        return o.sphere_radius + o.max_depth
     return o.max_depth + 2.0 * o.edge_radius
 
 
 def sphere_geometry(g, o, lc):
-    """Quarter disc of the sphere touching the skin at the origin."""
-    Rs = o.sphere_radius
+    """A finger: the quarter disc of a sphere touching the skin at the origin, on a
+    cylinder of the same radius (its side is met once a press passes the hemisphere)."""
+    Rs, H = o.sphere_radius, tool_height(o)
     bottom, centre, rim = g.point(0.0, 0.0, lc), g.point(0.0, Rs, lc), g.point(Rs, Rs, lc)
-    arc = g.arc(rim, centre, bottom)
-    return g.surface([arc, g.line(bottom, centre), g.line(centre, rim)]), [arc]
+    top_rim, top_axis = g.point(Rs, H, lc), g.point(0.0, H, lc)
+    arc, side = g.arc(rim, centre, bottom), g.line(top_rim, rim)
+    surf = g.surface([arc, g.line(bottom, top_axis), g.line(top_axis, top_rim), side])
+    return surf, [arc, side]
 
 
 def pad_geometry(g, o, lc):

@@ -93,15 +93,25 @@ double tumour_contrast(double r, double s, double q, double h, const TumourContr
          std::pow(h / a, model.layer_power) * std::pow(gap / a, -model.gap_power);
 }
 
+double contrast_lateral_weight(double lateral, double r, double s, const TumourContrast& model) {
+  const double half_width = model.pad_radius + model.lateral_spread * std::max(s, 0.0);
+  const double plateau = std::max(r - half_width, 0.0);  // a tumour wider than the falloff: felt fully inside
+  const double x = std::clamp((lateral - plateau) / (2.0 * half_width), 0.0, 1.0);
+  return 1.0 - x * x * (3.0 - 2.0 * x);
+}
+
 namespace {
 
 // A tumour given in Pa: the extra force along the way out is C - 1 times the normal
 // spring's, so it grows with the press from 0 like the tissue's own (no onset to buzz on)
-// and fades beside the pad's axis as the spring model's does.
+// and fades beside the pad's axis as the 3-D FEM's does.
 double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, const ForceOptions& options) {
-  const auto [height, weight] = place_of(tumour, contact.foot.point, contact.outward, options.contrast.pad_radius);
-  if (weight <= 0.0) return 0.0;
+  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
+  const double height = to_center.dot(contact.outward);
   const double below_skin = contact.radius - height;  // the skin is R above the foot point
+  const double lateral = (to_center - height * contact.outward).norm();
+  const double weight = contrast_lateral_weight(lateral, tumour.radius, below_skin, options.contrast);
+  if (weight <= 0.0) return 0.0;
   return weight * normal *
          tumour_contrast(tumour.radius, below_skin, tumour.modulus_ratio, 2.0 * contact.radius, options.contrast);
 }

@@ -219,6 +219,53 @@ except ImportError:  # pragma: no cover - depends on the machine
     HAVE_SCIPY = False
 
 
+@unittest.skipUnless(HAVE_FEM, "gmsh/ccx or numpy missing")
+class LateralTest(unittest.TestCase):
+    """tools/fem/lateral.py, the 3-D model of an inclusion beside the pad's axis, and its
+    committed sweep (data/reference/lateral_slab40_E5k_linear.csv)."""
+
+    REF = os.path.join(HERE, "..", "..", "..", "data", "reference")
+
+    def axisymmetric(self, radius, depth, ratio):
+        with open(os.path.join(self.REF, "contrast_slab40_E5k_linear.csv")) as f:
+            for r in csv.DictReader(f):
+                if (abs(float(r["inclusion_radius_m"]) - radius) < 1e-9 and abs(float(r["inclusion_depth_m"]) - depth) < 1e-9
+                        and float(r["modulus_ratio"]) == ratio):
+                    return float(r["contrast"])
+        self.fail(f"no axisymmetric row for r={radius} s={depth} q={ratio}")
+
+    def test_a_coarse_solve_on_the_axis_agrees_with_the_axisymmetric_model_and_sneddon_hayes(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_lateral_test_") as tmp:
+            out = os.path.join(tmp, "lateral.csv")
+            res = subprocess.run([sys.executable, os.path.join(TOOLS, "lateral.py"), "--radius", "0.005", "--depth",
+                                  "0.010", "--offsets", "0", "--fine", "0.0016", "--coarse", "0.012", "--out", out],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(out) as f:
+                row = next(csv.DictReader(f))
+        extra = self.axisymmetric(0.005, 0.010, 5.0) - 1.0
+        self.assertLess(abs(float(row["contrast"]) - 1.0 - extra), 0.05 * extra)
+        # The twin is the plain layer: Sneddon x kappa (Hayes) for a 40 mm layer, within 5 %.
+        stiffness = float(row["twin_force_n"]) / 5e-4
+        self.assertLess(abs(stiffness / (SNEDDON * hayes.kappa(A / 0.040, NU)) - 1.0), 0.05)
+
+    def test_the_committed_sweep_fades_beside_the_axis_from_the_axisymmetric_value(self):
+        with open(os.path.join(self.REF, "lateral_slab40_E5k_linear.csv")) as f:
+            rows = list(csv.DictReader(f))
+        groups = {}
+        for r in rows:
+            groups.setdefault((r["inclusion_radius_m"], r["inclusion_depth_m"], r["modulus_ratio"]), []).append(r)
+        self.assertEqual(len(groups), 2)
+        for (radius, depth, ratio), g in groups.items():
+            g.sort(key=lambda r: float(r["offset_m"]))
+            contrast = [float(r["contrast"]) for r in g]
+            self.assertEqual(float(g[0]["offset_m"]), 0.0)
+            extra = self.axisymmetric(float(radius), float(depth), float(ratio)) - 1.0
+            self.assertLess(abs(contrast[0] - 1.0 - extra), 0.03 * extra, (radius, depth))
+            self.assertEqual(contrast, sorted(contrast, reverse=True), (radius, depth))
+            self.assertLess(contrast[-1] - 1.0, 0.25 * (contrast[0] - 1.0), "well beyond the pad, little is left")
+
+
 class ToolsTest(unittest.TestCase):
     """Where the tools are part of the build (ctest sets PALPA_REQUIRE_FEM=1, install-deps.sh
     installs them), a missing one fails here rather than skipping the whole suite unseen."""

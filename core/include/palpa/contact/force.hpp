@@ -28,9 +28,11 @@ struct TumourFeel {
 ///
 /// fitted to the on-axis FEM sweeps of data/reference, layers of 20, 30 and 40 mm
 /// (tools/fem/fit_contrast.py: within 14.2 % of C - 1 on 72 inclusions, 19.8 % on a layer
-/// left out of the fit). Beside the pad's axis the contrast fades with the same C1 falloff
-/// as the spring model's (over one pad radius beyond the tumour's rim), which the 3-D
-/// sweep of data/reference checks (palpa-cli bench fidelity).
+/// left out of the fit). Beside the pad's axis the extra force fades C1 with the finger's
+/// offset rho from the tumour's centre: w = 1 - 3x^2 + 2x^3, x = rho / (2 l) clamped to
+/// [0, 1], with l = a + spread s the half-width (C - 1 halves at rho = l), fitted to the 3-D
+/// sweep of data/reference (tools/fem/lateral.py); a tumour wider than l keeps its full
+/// contrast over its inside (x = (rho - (r - l)) / (2 l) there).
 struct TumourContrast {
   double a_scale = 5.373;      ///< A
   double ratio_knee = 1.691;   ///< g: (q - 1) / (q + g) saturates for a rigid sphere
@@ -40,8 +42,14 @@ struct TumourContrast {
   double base_power = 0.3258;  ///< d: the rigid base shields an inclusion near it
   double layer_power = -0.7517;  ///< e: a thinner layer makes an inclusion a larger part of it
   double gap_power = -0.4377;  ///< c: an inclusion nearly reaching the skin saturates its size effect
+  double lateral_spread = 0.24;  ///< the half-width grows by this per metre of depth: the pad's field spreads
   double pad_radius = 7.5e-3;  ///< m, a
 };
+
+/// w: the share of a tumour's on-axis contrast felt with the finger `lateral` (m) beside
+/// its centre, for a tumour of radius r whose centre lies s below the skin (1 on the axis,
+/// 0 from 2 l on; C1).
+double contrast_lateral_weight(double lateral, double r, double s, const TumourContrast& model = {});
 
 /// C - 1 for a tumour of radius r, centre s below the skin, modulus ratio q, in tissue of
 /// local thickness h, on the pad's axis (q <= 1 or a degenerate layer: 0).

@@ -1,0 +1,54 @@
+#pragma once
+// palpa-cli bench fidelity, tumour contrast: Palpa's F_with / F_without against the
+// finite-element sweeps of data/reference: on the pad's axis for layers of 20, 30 and 40 mm
+// (with the onset depth, the first press at which the contrast reaches 1.10), and beside
+// the axis on the 40 mm layer (with the lateral half-width of the extra force).
+#include <filesystem>
+#include <vector>
+
+#include "palpa/scene/scene.hpp"
+
+namespace palpa::cli::fidelity {
+
+/// |F| (N) of a press `depth` straight down into the middle of a slab's top, as the engine
+/// probes (its default options: shear springs requested, followed where the law has them).
+double centre_force(const scene::Scene& scene, double depth);
+
+/// One inclusion: a stiff sphere of radius r, centre s below the skin, modulus q times the
+/// layer's, `offset` beside the pad's axis, in a layer of 5 kPa and thickness h.
+struct Inclusion {
+  double thickness = 0.0, radius = 0.0, depth = 0.0, ratio = 0.0, offset = 0.0;  // m, m, m, -, m
+  double fem = 0.0;         // the FEM's contrast
+  double calibrated = 0.0;  // Palpa, the tumour in Pa, at a 2 mm press
+  double paper = 0.0;       // the paper's law, a tumour spring of 0.02 m x E_t, at a 4 mm press
+  // First press depth (m) with contrast >= 1.10, or a negative value when none reaches it
+  // up to 40 % of the thickness (the FEM's: linear, so at first touch or never).
+  double fem_onset = -1.0, calibrated_onset = -1.0, paper_onset = -1.0;
+};
+
+/// The contrast mark: within 20 % of C - 1, or 0.02 where C - 1 is small.
+bool contrast_met(double model, double fem);
+/// The onset mark: both never reach 1.10, or both do within 2 mm of each other.
+bool onset_met(double model, double fem);
+
+/// The on-axis sweeps (contrast_slab{20,30,40}_E5k_linear.csv) with Palpa's values filled
+/// in. Throws std::runtime_error naming a file and line it cannot read.
+std::vector<Inclusion> on_axis(const std::filesystem::path& reference_dir);
+
+/// The lateral sweep (lateral_slab40_E5k_linear.csv), Palpa's values at the same offsets.
+std::vector<Inclusion> beside_axis(const std::filesystem::path& reference_dir);
+
+/// Lateral half-width of one inclusion's extra force: the offset (m) at which C - 1 falls to
+/// half its value on the axis, interpolated linearly between the rows (all of one inclusion,
+/// by increasing offset); `which` picks the FEM's, the calibrated or the paper's contrast.
+/// The last offset when it never halves there; -1 when nothing is felt on the axis.
+enum class Source { Fem, Calibrated, Paper };
+double half_width(const std::vector<Inclusion>& rows, Source which);
+
+/// The rows of each inclusion of the lateral sweep, by increasing offset.
+std::vector<std::vector<Inclusion>> by_inclusion(const std::vector<Inclusion>& rows);
+
+void write_contrast_csv(const std::vector<Inclusion>& rows, const std::filesystem::path& path);
+void write_lateral_csv(const std::vector<Inclusion>& rows, const std::filesystem::path& path);
+
+}  // namespace palpa::cli::fidelity
