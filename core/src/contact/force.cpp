@@ -125,7 +125,10 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
   // On a support the tissue compresses at most to its thickness; the rest is the wall.
   const bool anchored = body.anchored();
   const double tissue = contact.depth;  // at most 2R on a support (top_side_contact)
-  f.normal = contact.stiffness * tissue * contact.outward;
+  const double normal = options.finger.on ? finger_force(options.finger.modulus, options.finger.poisson, tissue,
+                                                         2.0 * contact.radius, options.finger.law)
+                                          : contact.stiffness * tissue;
+  f.normal = normal * contact.outward;
   if (options.shear) {
     // The shear springs stretch to the probe, or to the bottom contour under it once the
     // press is in the support (equal to q while the press is in the tissue).
@@ -133,7 +136,6 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
     f.shear = shear_force(body, contact, at, options.shear_delta);
   }
   double tumour = 0.0;
-  const double normal = contact.stiffness * tissue;
   for (const auto& t : tumours) {
     tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, options)
                                     : tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue,

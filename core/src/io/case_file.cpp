@@ -438,6 +438,17 @@ CaseFile validate(json doc, Validator& v) {
     for (std::size_t k = 0; k < doc["bodies"].size(); ++k) read_body(doc["bodies"][k], k, ids, v, out.bodies);
   }
 
+  if (doc.contains("indenter")) {
+    const json& i = doc["indenter"];
+    if (i == "pad") {
+      out.indenter = mat::Indenter::Pad;
+    } else if (i == "finger") {
+      out.indenter = mat::Indenter::Finger;
+    } else {
+      v.add("/indenter", "indenter must be \"pad\" or \"finger\", not " + brief(i));
+    }
+  }
+
   if (doc.contains("tumors")) {
     const json& t = doc["tumors"];
     if (!t.is_array()) {
@@ -512,6 +523,7 @@ json to_json(const CaseFile& file) {
   doc["format"] = "palpa-case";
   doc["version"] = 1;
   doc["title"] = file.title;
+  if (file.indenter == mat::Indenter::Finger || doc.contains("indenter")) doc["indenter"] = mat::to_string(file.indenter);
   const json old_bodies = doc.contains("bodies") && doc["bodies"].is_array() ? doc["bodies"] : json::array();
   json bodies = json::array();
   for (std::size_t k = 0; k < file.bodies.size(); ++k) {

@@ -89,6 +89,8 @@ bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v,
 const char* to_string(Support support) { return support == Support::Bottom ? "bottom" : "free"; }
 const char* to_string(ForceModel model) { return model == ForceModel::Calibrated ? "calibrated" : "paper"; }
 
+const char* to_string(Indenter indenter) { return indenter == Indenter::Finger ? "finger" : "pad"; }
+
 MatBody::MatBody(std::string id, Support support, std::vector<double> u, std::vector<double> v,
                  spline::BSplineSurface skeleton, spline::BSplineSurface top, spline::BSplineSurface bottom)
     : id_(std::move(id)),

@@ -72,6 +72,7 @@ double modulus_around(const mat::BodyGrid& grid, const std::array<double, 3>& ce
 
 Scene Scene::build(const io::CaseFile& file, const std::string& source, const mat::FitOptions& options) {
   Scene scene;
+  scene.indenter_ = file.indenter;
   scene.bodies_.reserve(file.bodies.size());
   std::vector<io::Problem> problems;
   for (std::size_t k = 0; k < file.bodies.size(); ++k) {
@@ -79,7 +80,10 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       auto body = mat::MatBody::fit(file.bodies[k], options);
       contact::FootPointSearch search(body.skeleton());
       const auto bounds = bounds_of(body);
-      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}, file.bodies[k].force_model});
+      const auto& grid = file.bodies[k];
+      std::optional<mat::LayerStiffnessTable> layer;
+      if (!grid.modulus.empty()) layer.emplace(grid.poisson, mat::kFingertipPadRadius);
+      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}, grid.force_model, layer, grid.poisson});
     } catch (const mat::FitError& e) {
       problems.push_back({"/bodies/" + std::to_string(k), std::string("cannot fit: ") + e.what()});
     }
@@ -188,10 +192,17 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
   state.held = result.body;
   if (result.body >= 0) {
     const SceneBody& sb = bodies_[static_cast<std::size_t>(result.body)];
-    if (sb.force_model == mat::ForceModel::Calibrated && options.force.shear) {
-      contact::ForceOptions normal_only = options.force;  // a few dozen bytes on the stack
-      normal_only.shear = false;
-      result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, normal_only);
+    if (sb.force_model == mat::ForceModel::Calibrated) {
+      contact::ForceOptions calibrated = options.force;  // a few dozen bytes on the stack
+      calibrated.shear = false;
+      if (indenter_ == mat::Indenter::Finger && sb.layer) {
+        // The tissue's modulus back from the stiffness the pad would feel here.
+        const double per_pascal = (*sb.layer)(1.0, 2.0 * result.contact.radius);
+        calibrated.finger.on = per_pascal > 0.0;
+        calibrated.finger.modulus = calibrated.finger.on ? result.contact.stiffness / per_pascal : 0.0;
+        calibrated.finger.poisson = sb.poisson;
+      }
+      result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, calibrated);
     } else {
       result.force = contact::contact_force(sb.body, result.contact, q, sb.tumours, options.force);
     }

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "palpa/contact/contact.hpp"
+#include "palpa/contact/finger.hpp"
 #include "palpa/mat/tumour.hpp"
 
 namespace palpa::contact {
@@ -66,6 +67,15 @@ struct ForceOptions {
   double support_stiffness = 2000.0;
   TumourFeel tumour{};
   TumourContrast contrast{};
+  /// A rounded finger instead of the pad (case "indenter": "finger", calibrated law only):
+  /// the scene sets it per probe with the tissue's modulus at the contact; the normal force
+  /// is then finger_force, and a tumour in Pa adds its contrast to that.
+  struct Finger {
+    bool on = false;
+    double modulus = 0.0;   ///< Pa
+    double poisson = 0.49;
+    FingerLaw law{};
+  } finger{};
 };
 
 struct Force {

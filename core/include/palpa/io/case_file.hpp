@@ -63,6 +63,8 @@ struct CaseFile {
   std::string title;
   std::vector<mat::BodyGrid> bodies;
   std::vector<mat::Tumour> tumours;
+  /// "indenter": what presses bodies under the calibrated law (absent: the flat pad).
+  mat::Indenter indenter = mat::Indenter::Pad;
   /// The document as loaded: fields Palpa does not know are written back unchanged by
   /// save_case.
   nlohmann::json document = nlohmann::json::object();

@@ -22,6 +22,13 @@ const char* to_string(Support support);
 enum class ForceModel { Paper, Calibrated };
 const char* to_string(ForceModel model);
 
+/// What presses the tissue under the calibrated law (docs/model.md, "A rounded finger"):
+/// a fingertip pad flattened against the skin (a flat punch of 7.5 mm radius, the default:
+/// a pad flattens at clinical forces) or a rounded finger (a sphere of 8 mm radius, whose
+/// force grows like depth^1.5 at first). The paper's law has springs, not an indenter.
+enum class Indenter { Pad, Finger };
+const char* to_string(Indenter indenter);
+
 struct BodyGrid {
   std::string id;
   Support support = Support::Free;

@@ -2,11 +2,13 @@
 // A scene: the fitted bodies of a case with their tumours, and the probe query the
 // haptic loop runs against them (the deepest penetration wins; bodies whose bounding
 // box cannot contain the probe are skipped without a foot-point search).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "palpa/contact/force.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/mat/layer_stiffness.hpp"
 
 namespace palpa::scene {
 
@@ -29,6 +31,10 @@ struct SceneBody {
   /// Calibrated: the normal spring alone (its stiffness came from the tissue's modulus),
   /// whatever ForceOptions::shear says; Paper: the shear springs as ForceOptions::shear says.
   mat::ForceModel force_model = mat::ForceModel::Paper;
+  /// A body given by its modulus: kappa of its material, to read the modulus back from the
+  /// stiffness at a contact (a rounded finger's force needs it); empty for a body in N/m.
+  std::optional<mat::LayerStiffnessTable> layer;
+  double poisson = 0.49;
 };
 
 /// How far a tumour's sphere stays inside `body` (m): the smallest depth of its centre and
@@ -85,8 +91,12 @@ class Scene {
   /// Resolves the probe against every body; allocation-free given a sized state.
   ProbeResult probe(const Vec3& q, ProbeState& state, const ProbeOptions& options = {}) const;
 
+  /// What presses bodies under the calibrated law (the case's "indenter").
+  mat::Indenter indenter() const { return indenter_; }
+
  private:
   std::vector<SceneBody> bodies_;
+  mat::Indenter indenter_ = mat::Indenter::Pad;
 };
 
 }  // namespace palpa::scene
