@@ -7,6 +7,7 @@
 #include "exercise_test_support.hpp"
 #include "palpa/exercise/exercise.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/author/presets.hpp"
 
 namespace palpa {
 namespace {
@@ -124,6 +125,40 @@ TEST(Exercise, AuthoredTumourExpertMarksItLightDoesNotSloppyMarksElsewhere) {
   expect_expert_finds(scene, tumour, run(scene, kNearAuthored, Style::Expert, 1));
   expect_light_misses(scene, run(scene, kNearAuthored, Style::Light, 1));
   expect_sloppy_false_marks(scene, tumour, run(scene, exercise::whole_top_contours(scene), Style::Sloppy, 1));
+}
+
+// The breast preset in kPa (3.25 kPa, 50 mm at the centre) with, when `modulus` > 0, one
+// tumour in Pa under the skin at (20, -20) mm, its centre `below` under the skin there.
+scene::Scene breast_in_kpa(double radius, double below, double modulus) {
+  io::CaseFile file = author::make_preset_case(author::preset_defaults_in_kpa(author::Preset::Breast), "breast");
+  if (modulus > 0.0) {
+    const auto plain = scene::Scene::build(file, "breast.json");
+    const auto column = column_through(plain.body(0), Vec3(0.02, -0.02, 0.0));
+    mat::Tumour t;
+    t.body = file.bodies[0].id;
+    const Vec3 c = column.top() - below * Vec3::UnitZ();
+    t.center = {c.x(), c.y(), c.z()};
+    t.radius = radius;
+    t.modulus = modulus;
+    file.tumours.push_back(t);
+  }
+  return scene::Scene::build(io::parse_case(io::to_json(file).dump(), "breast.json"), "breast.json");
+}
+
+TEST(Exercise, InTissueInKpaTheExpertFindsWhatAPersonCouldAndMarksNothingElse) {
+  // Plain tissue in Pa feels firmer only where it thins over the rigid base, which the
+  // expert discounts: a whole exam of the plain breast marks nothing. A 20 mm, 20 kPa mass
+  // 15 mm deep (about 1.36x the force over it, docs/model.md) is found with one mark; a
+  // 10 mm one (about 1.05x, below what a finger tells apart) is not.
+  const auto plain = breast_in_kpa(0.0, 0.0, 0.0);
+  EXPECT_TRUE(run(plain, exercise::whole_top_contours(plain), Style::Expert, 1).marks.empty());
+  const auto large = breast_in_kpa(0.010, 0.015, 20000.0);
+  const auto found = run(large, exercise::whole_top_contours(large), Style::Expert, 1);
+  ASSERT_EQ(found.marks.size(), 1u);
+  const auto& t = large.body(0).tumours.at(0);
+  EXPECT_LE((found.marks[0] - column_through(large.body(0), centre_of(t)).top()).norm(), t.radius + 0.010);
+  const auto small = breast_in_kpa(0.005, 0.015, 20000.0);
+  EXPECT_TRUE(run(small, exercise::whole_top_contours(small), Style::Expert, 1).marks.empty());
 }
 
 // The expert's exam of the region around the authored tumour, run once for the tests

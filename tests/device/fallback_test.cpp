@@ -164,7 +164,10 @@ TEST(LiveExerciseUnplug, TheSessionGoesOnWithTheMouseAndReadsBackComplete) {
   std::vector<std::string> kinds;
   for (const auto& e : s.events) kinds.emplace_back(session::to_string(e.kind));
   EXPECT_EQ(kinds, (std::vector<std::string>{"start", "pause", "resume", "end"}));
-  EXPECT_NEAR(s.events[1].t, 0.3, 0.0015);
+  // The haptic time of the unplug: the first tick at or after 0.3 s that saw it. A loaded
+  // machine (ctest -j2 beside the GUI tests) can delay that tick's detection by a few ticks.
+  EXPECT_GE(s.events[1].t, 0.3 - 0.0015);
+  EXPECT_LE(s.events[1].t, 0.3 + 0.005);
   EXPECT_EQ(s.events[1].note.rfind("device: test SpaceMouse disconnected: using the mouse", 0), 0u) << s.events[1].note;
   EXPECT_EQ(s.events[2].note, "device: continuing with virtual (mouse)");
   EXPECT_NE(s.events[3].note.find("(device: test SpaceMouse disconnected"), std::string::npos) << s.events[3].note;

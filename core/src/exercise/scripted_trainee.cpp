@@ -133,6 +133,8 @@ ScriptedTrainee::ScriptedTrainee(const scene::Scene& scene, const std::vector<Ex
   curve_.assign(n * kDepthGrid, 0.0);
   cap_ = kNoCap;
   ratio_.assign(n, 0.0);
+  layer_factor_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) layer_factor_[i] = layer_factor(spots_[i].body, spots_[i].thickness);
   suspicious_.assign(n, 0);
   scratch_.reserve(n);
   group_.reserve(n);
@@ -414,7 +416,18 @@ void ScriptedTrainee::regulate(const Waypoint& w) noexcept {
 
 double ScriptedTrainee::stiffness_at(std::size_t spot, int k) const noexcept {
   const double f = curve_[spot * kDepthGrid + static_cast<std::size_t>(k)];
-  return f > 0.0 ? f / (k * kDepthStep * spots_[spot].thickness) : 0.0;
+  return f > 0.0 ? f / (k * kDepthStep * spots_[spot].thickness) / layer_factor_[spot] : 0.0;
+}
+
+bool ScriptedTrainee::in_pa(std::size_t body) const noexcept {
+  const auto& b = scene_->body(body);
+  return b.layer.has_value() && b.force_model == mat::ForceModel::Calibrated;
+}
+
+double ScriptedTrainee::layer_factor(std::size_t body, double thickness) const noexcept {
+  if (!in_pa(body) || !(thickness > 0.0)) return 1.0;
+  const double f = (*scene_->body(body).layer)(1.0, thickness);
+  return f > 0.0 ? f : 1.0;
 }
 
 int ScriptedTrainee::deepest_grid(std::size_t spot) const noexcept {
@@ -478,9 +491,14 @@ void ScriptedTrainee::complete(const Waypoint& w, double t) noexcept {
       Finding& f = findings_[static_cast<std::size_t>(w.index)];
       const double held = std::min(w.indentation, cap_);
       if (held > 0.0) f.felt = force_.norm() / held;
-      const auto k = std::min(kDepthGrid - 1, static_cast<int>(held / (f.thickness * kDepthStep) + 1e-9));
+      // At the re-palpation's depth, or the deepest the neighbours' presses reached when it
+      // went deeper than they did (tissue in Pa is linear: the same stiffness at both).
+      auto k = std::min(kDepthGrid - 1, static_cast<int>(held / (f.thickness * kDepthStep) + 1e-9));
+      if (in_pa(f.body)) k = std::min(k, f.grid);
       if (k >= 1) f.reference = neighbourhood_median(f.body, f.top, k, spots_.size());
-      f.marked = f.reference > 0.0 && f.felt > params_.confirm_ratio * f.reference;
+      f.felt /= layer_factor(f.body, f.thickness);
+      const double confirm = in_pa(f.body) ? params_.tissue_confirm_ratio : params_.confirm_ratio;
+      f.marked = f.reference > 0.0 && f.felt > confirm * f.reference;
       break;
     }
     case Action::MarkFinding: {
@@ -524,7 +542,8 @@ void ScriptedTrainee::judge_strip(int strip, bool provisional) noexcept {
     const double median = neighbourhood_median(spots_[i].body, spots_[i].top, k, i);
     if (median <= 0.0) continue;
     ratio_[i] = stiffness_at(i, k) / median;
-    if (ratio_[i] > params_.suspicion_ratio) suspicious_[i] = provisional ? kMayJoin : kSuspicious;
+    const double suspicion = in_pa(spots_[i].body) ? params_.tissue_suspicion_ratio : params_.suspicion_ratio;
+    if (ratio_[i] > suspicion) suspicious_[i] = provisional ? kMayJoin : kSuspicious;
   }
 }
 
@@ -553,9 +572,11 @@ void ScriptedTrainee::find_groups(std::size_t at) noexcept {
     }
     // The stiffness-weighted centroid (by how much stiffer each spot felt).
     double w = 0.0, u = 0.0, v = 0.0, searched = 0.0;
+    int grid = 0;
     for (int g : group_) {
       const auto i = static_cast<std::size_t>(g);
       searched = std::max(searched, pressed_force_[i]);
+      grid = std::max(grid, deepest_grid(i));
       const double wi = ratio_[i] - 1.0;
       w += wi;
       u += wi * spots_[i].u;
@@ -574,7 +595,7 @@ void ScriptedTrainee::find_groups(std::size_t at) noexcept {
       continue;
     }
     const int index = static_cast<int>(findings_.size());
-    findings_.push_back({body, u, v, f.top, 2.0 * f.radius, 0.0, 0.0, false});
+    findings_.push_back({body, grid, u, v, f.top, 2.0 * f.radius, 0.0, 0.0, false});
 
     // Re-palpate the finding's centre a little harder than the search presses there
     // (deeper, and up to repalpate_factor times the force they felt, never over the
@@ -582,8 +603,10 @@ void ScriptedTrainee::find_groups(std::size_t at) noexcept {
     // surroundings.
     add_glide(detour_, cbody, cu, cv, body, u, v, cursor);
     const double v_press = params_.press_speed;
-    const double depth = params_.levels[static_cast<std::size_t>(params_.level_count - 1)] *
-                         params_.repalpate_factor * 2.0 * f.radius;
+    // Tissue in Pa feels the same contrast at every depth (linear elasticity): the finding
+    // is re-palpated as deep as the search pressed, where its neighbours were measured.
+    const double deeper = in_pa(body) ? 1.0 : params_.repalpate_factor;
+    const double depth = params_.levels[static_cast<std::size_t>(params_.level_count - 1)] * deeper * 2.0 * f.radius;
     const double limit = std::min(params_.force_limit, params_.repalpate_factor * searched);
     detour_.push_back(press_to(f.top, f.normal, 0.0, params_.lift / v_press, limit));
     detour_.push_back(press_to(f.top, f.normal, depth, depth / v_press, limit));

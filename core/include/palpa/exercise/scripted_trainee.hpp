@@ -65,6 +65,16 @@ struct StyleParameters {
   /// much more force than the search presses there felt, never over force_limit.
   double repalpate_factor = 1.15;
   double confirm_ratio = 1.2;    ///< a re-palpation this much stiffer than the neighbourhood: mark
+  /// The same two thresholds for bodies whose tissue is given in Pa (the calibrated law).
+  /// Plain tissue there varies only with its thickness over the rigid base, which the
+  /// trainee discounts (it knows tissue over the chest wall feels firmer: each spot's
+  /// stiffness is divided by the layer's factor for its thickness, mat::LayerStiffnessTable),
+  /// so it can notice what a person can: about 20 % firmer (the compliance JND; docs/user-guide.md,
+  /// "Cases in kPa"; 1.18 stays above the 16 % that the layer's shape still leaves on a plain
+  /// breast). The paper's springs vary by tens of per cent across a plain body with its
+  /// shape, hence the higher thresholds above for bodies in N/m.
+  double tissue_suspicion_ratio = 1.20;
+  double tissue_confirm_ratio = 1.18;
   double min_thickness = 0.004;  ///< m: thinner tissue holds no palpable mass; not judged
   int false_marks_min = 0;       ///< marks this many to ...
   int false_marks_max = 0;       ///< ... this many spots (drawn from the seed) where it felt nothing
@@ -142,6 +152,7 @@ class ScriptedTrainee final : public engine::Device {
   };
   struct Finding {
     std::size_t body = 0;
+    int grid = 0;            ///< the deepest depth grid index the neighbourhood was judged at
     double u = 0.0, v = 0.0;
     Vec3 top = Vec3::Zero();
     double thickness = 0.0;  ///< m, 2R
@@ -224,6 +235,11 @@ class ScriptedTrainee final : public engine::Device {
   int curve_spot_ = -1;
   double curve_fraction_ = 0.0, curve_force_ = 0.0;  ///< last point fed
   std::vector<double> ratio_;       ///< stiffness / neighbourhood median; 0 until judged
+  /// Per spot: N/m per Pa of its layer (bodies in Pa) or 1 (bodies in N/m); stiffnesses are
+  /// compared divided by it, so a thinner layer's firmness is not taken for a mass.
+  std::vector<double> layer_factor_;
+  double layer_factor(std::size_t body, double thickness) const noexcept;
+  bool in_pa(std::size_t body) const noexcept;
   // Per spot: nothing felt, suspicious, suspicious on a provisional judgement (may join a
   // finding, cannot start one), taken into a finding.
   enum : char { kPlain = 0, kSuspicious = 1, kMayJoin = 2, kTaken = 3 };
