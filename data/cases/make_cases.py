@@ -45,15 +45,19 @@ def bump(s, t):
     return (1.0 - s * s) * (1.0 - t * t)
 
 
-def body(body_id, rows, cols, point, radius, stiffness, damping=None, mass=None, extra=None):
-    """Builds a body dict from per-site functions f(i, j)."""
+def body(body_id, rows, cols, point, radius, stiffness, damping=None, mass=None, extra=None, modulus=None):
+    """Builds a body dict from per-site functions f(i, j); with `modulus` (Pa) the tissue
+    is given by its Young's modulus instead of the stiffness (docs/case-format.md)."""
     sites = [(i, j) for i in range(rows) for j in range(cols)]
     b = {"id": body_id, "rows": rows, "cols": cols}
     if extra:
         b.update(extra)
     b["medial"] = [[rnd(c, M_DIGITS) for c in point(i, j)] for i, j in sites]
     b["radius"] = [rnd(radius(i, j), M_DIGITS) for i, j in sites]
-    b["stiffness"] = [rnd(stiffness(i, j), K_DIGITS) for i, j in sites]
+    if modulus is not None:
+        b["modulus"] = [rnd(modulus(i, j), K_DIGITS) for i, j in sites]
+    else:
+        b["stiffness"] = [rnd(stiffness(i, j), K_DIGITS) for i, j in sites]
     if damping is not None:
         b["damping"] = [rnd(damping(i, j), B_DIGITS) for i, j in sites]
     if mass is not None:
@@ -161,6 +165,62 @@ def check_tumor_inside(b, tumor):
             y = c[1] + rt * math.cos(math.radians(e)) * math.sin(math.radians(a))
             z = c[2] + rt * math.sin(math.radians(e))
             assert 0.0 < z < BREAST_H * breast_profile_xy(x, y), "tumour crosses the body surface"
+
+
+# --- ladder-N.json: the same breast in kPa, one mass harder to find at each rung ----
+
+# Breast fat and fibroglandular tissue are about equally stiff at small strain, 3.25 kPa
+# (Samani, Zubovits and Plewes, Phys. Med. Biol. 52, 2007); invasive carcinoma is 3-13
+# times that, about 10-45 kPa (the same study). The contrast is what Palpa gives pressed
+# 10 mm straight down over the mass (`palpa-cli probe`, against the same case with the
+# mass at the tissue's modulus), from the finite-element fit of docs/model.md
+# ("Tumours in Pa"); the fitted skin lies about 2 mm above this script's analytic dome,
+# so the centres are about 2 mm deeper than `below` says.
+BREAST_E = 3250.0
+LADDER = (
+    # (diameter m, centre below the analytic skin m, modulus Pa, title, contrast in Palpa)
+    (0.020, 0.015, 45000.0, "superficial hard mass", 1.40),
+    (0.015, 0.012, 30000.0, "mid-size mass", 1.23),
+    (0.012, 0.012, 30000.0, "small mass", 1.12),
+    (0.010, 0.010, 30000.0, "a 1 cm mass: expert", 1.09),
+)
+
+
+def make_ladder(rung):
+    diameter, below, modulus, what, contrast = LADDER[rung - 1]
+
+    def point(i, j):
+        s, t = breast_st(i, j)
+        return (s * BREAST_LX / 2, t * BREAST_LY / 2, BREAST_H / 2 * bump(s, t))
+
+    def radius(i, j):
+        return BREAST_H / 2 * bump(*breast_st(i, j))
+
+    b = body("breast", BREAST_ROWS, BREAST_COLS, point, radius, None, extra={"support": "bottom"},
+             modulus=lambda i, j: BREAST_E)
+    # The default case's spot in the upper-outer region, `below` under the skin.
+    cx, cy = 0.35 * BREAST_LX / 2, 0.25 * BREAST_LY / 2
+    cz = BREAST_H * breast_profile_xy(cx, cy) - below
+    tumor = {
+        "body": "breast",
+        "center": [rnd(cx, M_DIGITS), rnd(cy, M_DIGITS), rnd(cz, M_DIGITS)],
+        "radius": diameter / 2,
+        "modulus": modulus,
+    }
+    check_tumor_inside(b, tumor)
+    return case(
+        f"Breast in kPa, ladder {rung} of {len(LADDER)}: {what}",
+        [b],
+        description=(
+            f"The default breast (base 0.14 m x 0.16 m, projection 0.05 m, on the chest wall) "
+            f"in tissue of {BREAST_E / 1000:g} kPa, with one {diameter * 1000:g} mm mass of "
+            f"{modulus / 1000:g} kPa whose centre lies about {below * 1000 + 2:g} mm under the skin "
+            f"in the upper-outer region: {contrast:.2f} times the force over it (pressed 10 mm; "
+            f"the finite-element fit of docs/model.md). Rungs 1-4 go from a mass the scripted "
+            f"expert finds to ones only a careful examiner can tell from the tissue."
+        ),
+        tumors=[tumor],
+    )
 
 
 # --- small cases used by the tests ---------------------------------------------
@@ -291,6 +351,7 @@ CASES = {
     "strip-9x3.json": lambda: make_strip(9, 3),
     "pole-5x6.json": make_pole,
     "two-bodies.json": make_two_bodies,
+    **{f"ladder-{k}.json": (lambda k=k: make_ladder(k)) for k in range(1, len(LADDER) + 1)},
 }
 
 
@@ -307,7 +368,7 @@ def fmt(v):
     return json.dumps(v, ensure_ascii=False)
 
 
-PER_POINT = ("radius", "stiffness", "damping", "mass")
+PER_POINT = ("radius", "stiffness", "modulus", "damping", "mass")
 
 
 def dump(v, ind=0, wrap=None):

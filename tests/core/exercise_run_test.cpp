@@ -161,6 +161,33 @@ TEST(Exercise, InTissueInKpaTheExpertFindsWhatAPersonCouldAndMarksNothingElse) {
   EXPECT_TRUE(run(small, exercise::whole_top_contours(small), Style::Expert, 1).marks.empty());
 }
 
+TEST(Exercise, TheLadderInKpaGetsHarderRungByRungAndTheExpertFindsTheFirst) {
+  // data/cases/ladder-K.json (docs/case-authoring.md, "The difficulty ladder in kPa"): the
+  // force over each rung's mass, against the same case with the mass at the tissue's
+  // modulus, falls from rung to rung; the expert finds rung 1 and not rung 4.
+  double last = 10.0;
+  for (int k = 1; k <= 4; ++k) {
+    const auto path = std::string(PALPA_SOURCE_DIR) + "/data/cases/ladder-" + std::to_string(k) + ".json";
+    io::CaseFile file = io::load_case(path);
+    const auto scene = scene::Scene::build(file, path);
+    file.tumours.at(0).modulus = file.bodies.at(0).modulus.at(0);
+    const auto plain = scene::Scene::build(file, path);
+    const auto top = column_through(scene.body(0), centre_of(scene.body(0).tumours.at(0))).top();
+    auto state = scene.make_state();
+    auto plain_state = plain.make_state();
+    const Vec3 q = top - 0.010 * Vec3::UnitZ();
+    const double ratio = scene.probe(q, state, {}).force.total.norm() / plain.probe(q, plain_state, {}).force.total.norm();
+    EXPECT_LT(ratio, last) << k;
+    EXPECT_GT(ratio, 1.05) << k;
+    last = ratio;
+    if (k == 1 || k == 4) {
+      const auto r = run(scene, exercise::whole_top_contours(scene), Style::Expert, 1);
+      EXPECT_EQ(r.marks.size(), k == 1 ? 1u : 0u) << k;
+    }
+  }
+  EXPECT_LT(last, 1.12);
+}
+
 // The expert's exam of the region around the authored tumour, run once for the tests
 // that only read it.
 const Run& authored_expert_run() {
