@@ -67,8 +67,16 @@ Command add_bench_command(CLI::App& parent) {
   table1->add_option("--display-span", t1->display_span,
                      "m: knot spans of the drawn surfaces (display refinement); 0 draws the fitted nets; default 0.004")
       ->check(CLI::Range(0.0, 1.0));
+  auto t1_tissue = std::make_shared<std::string>("nm");
+  auto t1_indenter = std::make_shared<std::string>("pad");
+  table1->add_option("--tissue", *t1_tissue,
+                     "nm: the paper's springs in N/m (default); kpa: every body given by the modulus that derives the "
+                     "same stiffness, under the calibrated law")
+      ->check(CLI::IsMember({"nm", "kpa"}));
+  table1->add_option("--indenter", *t1_indenter, "pad (default) or finger: what presses bodies in kPa")
+      ->check(CLI::IsMember({"pad", "finger"}));
   return {app, [o, out, accuracy, dynamics, dyn_out, tessellation, tess_out, tess_case, table1, t1, t1_csv, fidelity,
-               fid_out, fid_ref] {
+               fid_out, fid_ref, t1_tissue, t1_indenter] {
             if (fidelity->parsed()) {
               std::filesystem::path reference = *fid_ref;
               if (reference.empty()) {
@@ -83,6 +91,13 @@ Command add_bench_command(CLI::App& parent) {
             }
             if (table1->parsed()) {
               if (!t1_csv->empty()) t1->csv = *t1_csv;
+              t1->tissue_in_pa = *t1_tissue == "kpa";
+              t1->finger = *t1_indenter == "finger";
+              if (t1->finger && !t1->tissue_in_pa) {
+                std::fprintf(stderr, "palpa-cli: error: --indenter finger needs --tissue kpa (the paper's springs have no "
+                                     "indenter)\n");
+                return static_cast<int>(kBadInput);
+              }
               return run_bench_table1(*t1);
             }
             if (tessellation->parsed()) return run_bench_tessellation(*tess_out, *tess_case);

@@ -17,6 +17,7 @@
 #include "palpa/engine/realtime_loop.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/scene/table1_scenes.hpp"
 
 namespace palpa::cli {
@@ -194,6 +195,19 @@ class CpuLoad {
   std::vector<std::thread> threads_;
 };
 
+// Each body given by the Young's modulus whose derived stiffness (calibrated law, pad over
+// the local thickness) is the stiffness it has: the same forces, the calibrated law's tick.
+void in_pascal(io::CaseFile& file, bool finger) {
+  for (auto& g : file.bodies) {
+    const mat::LayerStiffnessTable layer(g.poisson, mat::kFingertipPadRadius);
+    g.modulus.resize(g.stiffness.size());
+    for (std::size_t k = 0; k < g.stiffness.size(); ++k) g.modulus[k] = g.stiffness[k] / layer(1.0, 2.0 * g.radius[k]);
+    g.stiffness = mat::layer_stiffness_field(g.modulus, g.radius, g.poisson);
+    g.force_model = mat::ForceModel::Calibrated;
+  }
+  file.indenter = finger ? mat::Indenter::Finger : mat::Indenter::Pad;
+}
+
 }  // namespace
 
 int run_bench_table1(const Table1Options& options) {
@@ -202,8 +216,13 @@ int run_bench_table1(const Table1Options& options) {
               "preproc ms", "memory KB", "p50 us dyn", "p99 us dyn", "p50 nodyn", "p99 nodyn", "max Hz", "core %",
               "draw p99 dyn", "draw nodyn", "serial p99", "paper: preproc s, MB, Hz dyn/nodyn");
   std::vector<std::string> csv_rows;
+  if (options.tissue_in_pa) {
+    std::printf("Bodies given in kPa under the calibrated law%s.\n\n",
+                options.finger ? ", pressed by the rounded finger" : " (the fingertip pad)");
+  }
   for (const auto& spec : scene::table1_scenes()) {
-    const auto file = scene::make_table1_case(spec);
+    io::CaseFile file = scene::make_table1_case(spec);
+    if (options.tissue_in_pa) in_pascal(file, options.finger);
     const auto start = Clock::now();
     const auto scene = scene::Scene::build(file, "table1");
     const double pre_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

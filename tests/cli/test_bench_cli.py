@@ -102,6 +102,27 @@ class BenchTessellation(unittest.TestCase):
             self.assertIn("missing.json", res.stderr)
 
 
+class BenchTable1(unittest.TestCase):
+    def test_the_table1_scenes_run_in_kpa_with_either_indenter_and_refuse_a_finger_on_springs(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_t1_") as d:
+            for extra in ([], ["--tissue", "kpa"], ["--tissue", "kpa", "--indenter", "finger"]):
+                out = os.path.join(d, "t1.csv")
+                res = run(["bench", "table1", "--seconds", "0.2", "--realtime-seconds", "0", "--csv", out, *extra],
+                          timeout=300)
+                self.assertEqual(res.returncode, 0, res.stdout + res.stderr)
+                self.assertEqual(("calibrated law" in res.stdout), bool(extra), res.stdout[:300])
+                with open(out) as fh:
+                    rows = list(csv.DictReader(fh))
+                self.assertEqual([int(r["bodies"]) for r in rows], [1, 1, 4, 10, 17, 35])
+                for r in rows:
+                    self.assertGreater(float(r["step_p99_us_dyn"]), 0.0, r)
+                    self.assertGreater(int(r["contact_ticks"]), 0, r)  # the palpation touched the bodies
+            res = run(["bench", "table1", "--indenter", "finger"])
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("--indenter finger needs --tissue kpa", res.stderr)
+            self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
+
+
 class BenchFidelity(unittest.TestCase):
     def test_calibrated_law_is_within_ten_percent_of_every_reference_and_the_papers_is_not(self):
         with tempfile.TemporaryDirectory(prefix="palpa_bench_fid_") as d:
