@@ -41,6 +41,8 @@ constexpr Reference kReferences[] = {
     {"slab20_E5k_flat_neohooke.csv", 0.020, 5000.0, "20 mm, neo-Hookean", true},
     {"slab20_E5k_flat_neohooke_pinned.csv", 0.020, 5000.0, "20 mm, neo-Hookean, edge pinned", false},
     {"slab20_E5k_flat_linear.csv", 0.020, 5000.0, "20 mm, linear", true},
+    {"slab30_E5k_flat_linear.csv", 0.030, 5000.0, "30 mm, linear", false},
+    {"slab30_E5k_flat_neohooke_pinned.csv", 0.030, 5000.0, "30 mm, neo-Hookean, edge pinned", false},
     {"slab40_E5k_finger8_neohooke.csv", 0.040, 5000.0, "40 mm, neo-Hookean, 8 mm finger", true,
      mat::Indenter::Finger},
     {"slab20_E5k_finger8_neohooke.csv", 0.020, 5000.0, "20 mm, neo-Hookean, 8 mm finger", true,

@@ -149,6 +149,19 @@ class FlatPunchTest(unittest.TestCase):
         self.assertLess(abs(twin / plain - 1.0), 0.01)
         self.assertGreater(lump / twin, 1.02)
 
+    def test_a_stiffer_layer_scales_the_force_exactly(self):
+        # Both material models are homogeneous of degree 1 in E (linear elasticity, and the
+        # neo-Hookean energy with C10 and 1/D1 proportional to E): 20 kPa pushes back four
+        # times 5 kPa at every depth. So the 5 kPa curves of data/reference stand for every
+        # modulus, and the reference needs no 20 kPa files.
+        for material in ((), ("--material", "neohookean", "--nlgeom", "--mesh-size", 0.0008)):
+            forces = []
+            for modulus in (5000.0, 20000.0):
+                rows, _ = run_indent("--thickness", 0.04, "--modulus", modulus, "--poisson", NU, *material,
+                                     "--max-depth", 0.001, "--steps", 2)
+                forces.append(rows[-1][1])
+            self.assertLess(abs(forces[1] / forces[0] - 4.0), 4e-4, material)
+
 
 @unittest.skipUnless(HAVE_FEM, "gmsh/ccx or numpy missing")
 class SphereTest(unittest.TestCase):
