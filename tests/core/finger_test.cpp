@@ -17,6 +17,7 @@
 #include "palpa/author/presets.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
+#include "reference_curves.hpp"
 
 namespace palpa::contact {
 namespace {
@@ -67,31 +68,13 @@ TEST(Finger, TheBondedLayerFactorStartsAtOneAndGrowsAsTheLayerThins) {
   EXPECT_LT(bonded_sphere_factor(0.3, 0.3), bonded_sphere_factor(0.3, 0.49));
 }
 
-double reference_force(const std::string& name, double depth) {
-  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/reference/" + name);
-  std::string line;
-  std::getline(in, line);
-  double d0 = 0.0, f0 = 0.0, d1 = 0.0, f1 = 0.0;
-  char comma = 0;
-  while (in >> d1 >> comma >> f1) {
-    if (d1 >= depth) return f0 + (f1 - f0) * (depth - d0) / (d1 - d0);
-    d0 = d1;
-    f0 = f1;
-  }
-  return std::nan("");
-}
+using reference_test::centre_press;
+using reference_test::reference_force;
 
 scene::Scene slab(double thickness, mat::Indenter indenter) {
   io::CaseFile file = author::make_modulus_slab(0.12, thickness, 5000.0, mat::ForceModel::Calibrated);
   file.indenter = indenter;
   return scene::Scene::build(io::parse_case(io::to_json(file).dump(), "slab.json"), "slab.json");
-}
-
-double centre_press(const scene::Scene& scene, double depth) {
-  std::array<double, 3> top{};
-  scene.body(0).body.top().evaluate(0.5, 0.5, top);
-  auto state = scene.make_state();
-  return scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, {}).force.total.norm();
 }
 
 TEST(Finger, ACaseInKpaPressedByAFingerFollowsTheNeoHookeanFem) {

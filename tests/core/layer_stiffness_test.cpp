@@ -18,6 +18,7 @@
 #include "palpa/author/presets.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
+#include "reference_curves.hpp"
 
 namespace palpa::mat {
 namespace {
@@ -109,37 +110,12 @@ TEST(LayerStiffnessTable, InterpolatesTheSolvedFactorWithin1e6) {
 namespace palpa::scene {
 namespace {
 
-// The force (N) at `depth` (m) of a finite-element reference curve (data/reference),
-// linearly interpolated between its rows.
-double reference_force(const std::string& name, double depth) {
-  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/reference/" + name);
-  std::string line;
-  std::getline(in, line);  // depth_m,force_n
-  double d0 = 0.0, f0 = 0.0, d1 = 0.0, f1 = 0.0;
-  char comma = 0;
-  while (in >> d1 >> comma >> f1) {
-    if (d1 >= depth) return f0 + (f1 - f0) * (depth - d0) / (d1 - d0);
-    d0 = d1;
-    f0 = f1;
-  }
-  ADD_FAILURE() << name << " does not reach " << depth << " m";
-  return 0.0;
-}
+using reference_test::centre_press;
+using reference_test::reference_force;
 
 // The slab of the reference (120 x 120 mm, 40 mm thick, on a rigid base) given in Pa.
 io::CaseFile slab_in_kpa(double modulus, mat::ForceModel model, double thickness = 0.04) {
   return author::make_modulus_slab(0.12, thickness, modulus, model);
-}
-
-// |F| (N) of a press `depth` into the slab's centre, straight down, as the engine probes it.
-double centre_press(const Scene& scene, double depth) {
-  std::array<double, 3> top{};
-  scene.body(0).body.top().evaluate(0.5, 0.5, top);
-  auto state = scene.make_state();
-  ProbeOptions options;  // the engine's defaults: shear springs on
-  const auto r = scene.probe(Vec3(top[0], top[1], top[2] - depth), state, options);
-  EXPECT_EQ(r.body, 0);
-  return r.force.total.norm();
 }
 
 TEST(TissueInKpa, AFortyMillimetreLayerOfFiveKpaPressedFourMillimetresIsTheFemForce) {
