@@ -15,8 +15,9 @@ void print_error(const std::string& message) { std::fprintf(stderr, "palpa-cli: 
 
 int main(int argc, char** argv) {
   using namespace palpa::cli;
-  CLI::App app{"Palpa command-line tools: case files, the medial-axis body model and (later) headless exercises.\n"
-               "Units are SI (m, N, N/m, kg, s) in every file and option.",
+  CLI::App app{"Palpa command-line tools: case files, the medial-axis body model, scripted exercises,\n"
+               "scoring, batch reports and benchmarks.\n"
+               "Units are SI (m, N, N/m, Pa, kg, s) in every file and option.",
                "palpa-cli"};
   app.set_version_flag("--version", std::string("palpa-cli ") + palpa::kVersion);
   app.require_subcommand(0, 1);  // checked after parsing, so unknown words are named first
