@@ -1,13 +1,13 @@
 #include "bench_fidelity.hpp"
 
 #include "bench_fidelity_contrast.hpp"
+#include "bench_fidelity_growth.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,7 +38,10 @@ constexpr Reference kReferences[] = {
     {"slab40_E5k_flat_neohooke_pinned_incl1x.csv", 0.040, 5000.0, "40 mm, neo-Hookean, pinned, 1x twin", false},
     {"slab40_E5k_flat_linear.csv", 0.040, 5000.0, "40 mm, linear", true},
     {"slab40_E5k_flat_linear_incl1x.csv", 0.040, 5000.0, "40 mm, linear, 1x twin", false},
+    {"slab40_E5k_flat_neohooke_pinned_r10d20_incl1x.csv", 0.040, 5000.0, "40 mm, neo-Hookean, pinned, 1x twin 2",
+     false},
     {"slab20_E5k_flat_neohooke.csv", 0.020, 5000.0, "20 mm, neo-Hookean", true},
+    {"slab20_E5k_flat_neohooke_pinned_incl1x.csv", 0.020, 5000.0, "20 mm, neo-Hookean, pinned, 1x twin", false},
     {"slab20_E5k_flat_neohooke_pinned.csv", 0.020, 5000.0, "20 mm, neo-Hookean, edge pinned", false},
     {"slab20_E5k_flat_linear.csv", 0.020, 5000.0, "20 mm, linear", true},
     {"slab30_E5k_flat_linear.csv", 0.030, 5000.0, "30 mm, linear", false},
@@ -57,29 +60,12 @@ struct Curve {
   std::vector<double> depth, force;  // m, N; without the 0,0 row
 };
 
-// "depth_m,force_n" rows; throws std::runtime_error naming the file and line.
 Curve read_curve(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read (give --reference DIR)");
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("depth_m,force_n", 0) != 0) {
-    throw std::runtime_error(path.string() + ": line 1: expected the header depth_m,force_n");
-  }
   Curve c;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    std::istringstream row(line);
-    double d = 0.0, f = 0.0;
-    char comma = 0;
-    if (!(row >> d >> comma >> f) || comma != ',' || !std::isfinite(d) || !std::isfinite(f) || d < 0.0) {
-      throw std::runtime_error(path.string() + ": line " + std::to_string(number) + ": expected depth_m,force_n");
-    }
-    if (d > 0.0) {
-      c.depth.push_back(d);
-      c.force.push_back(f);
-    }
+  for (const auto& [d, f] : fidelity::read_force_curve(path)) {
+    c.depth.push_back(d);
+    c.force.push_back(f);
   }
-  if (c.depth.empty()) throw std::runtime_error(path.string() + ": no depth above 0");
   return c;
 }
 
@@ -176,8 +162,9 @@ std::string half_width_text(double width, double fem) {
 // every inclusion.
 bool print_on_axis(const std::vector<fidelity::Inclusion>& rows) {
   std::printf("\nTumour contrast F_with / F_without on the pad's axis, layers of 5 kPa (contrast_slab*_E5k_linear.csv): "
-              "the tumour in Pa at a 2 mm press; the paper's law with a tumour spring of 0.02 m x E_t at 4 mm. Onset: "
-              "the first press with contrast >= 1.10 (up to 40 %% of the layer).\n");
+              "the tumour in Pa at a 2 mm press in the small-strain limit the linear sweeps stand for (its growth with the "
+              "press: next table); the paper's law with a tumour spring of 0.02 m x E_t at 4 mm. Onset: the first "
+              "press with contrast >= 1.10 (up to 40 %% of the layer).\n");
   std::printf("%6s %7s %10s %5s | %7s %8s | %10s %7s %8s | %8s %7s %8s\n", "layer", "radius", "centre", "ratio", "FEM",
               "onset", "calibrated", "error", "onset", "paper's", "error", "onset");
   std::size_t contrast_ok = 0, onset_ok = 0, paper_contrast_ok = 0, paper_onset_ok = 0;
@@ -198,6 +185,31 @@ bool print_on_axis(const std::vector<fidelity::Inclusion>& rows) {
   std::printf("onset within 2 mm (or neither reaching 1.10): calibrated %zu of %zu, paper's law %zu of %zu\n", onset_ok,
               rows.size(), paper_onset_ok, rows.size());
   return contrast_ok == rows.size() && onset_ok == rows.size();
+}
+
+// The growth table: contrast by press depth on the neo-Hookean twins; true when the
+// calibrated law meets the contrast mark at every press and the onset mark on every twin.
+bool print_growth(const std::vector<fidelity::Growth>& twins) {
+  std::printf("\nContrast growing with the press: neo-Hookean FEM twins (an inclusion at 5x and at 1x on one mesh, "
+              "geometric nonlinearity, edge pinned) against the calibrated law pressed as deep.\n");
+  bool met = true;
+  for (const auto& g : twins) {
+    const auto& first = g.rows.front();
+    std::printf("%.0f mm layer, r %.0f mm, centre %.0f mm deep, %gx:\n  %8s | %7s | %10s %7s\n", first.thickness * 1e3,
+                first.radius * 1e3, first.depth * 1e3, first.ratio, "press", "FEM", "calibrated", "error");
+    for (const auto& r : g.rows) {
+      const bool ok = fidelity::contrast_met(r.calibrated, r.fem);
+      met = met && ok;
+      std::printf("  %5.2f mm | %7.4f | %10.4f %+6.3f%s\n", r.press * 1e3, r.fem, r.calibrated, r.calibrated - r.fem,
+                  ok ? " " : "!");
+    }
+    const bool ok = fidelity::onset_met(g.calibrated_onset, g.fem_onset);
+    met = met && ok;
+    std::printf("  onset (to %.2f mm, the twin's reach): FEM %s, calibrated %s%s\n", g.rows.back().press * 1e3,
+                onset_text(g.fem_onset).c_str(), onset_text(g.calibrated_onset).c_str(),
+                ok ? "" : " (more than 2 mm off)");
+  }
+  return met;
 }
 
 // The lateral table: contrast beside the axis and the half-width of the extra force; true
@@ -232,6 +244,7 @@ bool print_lateral(const std::vector<fidelity::Inclusion>& rows) {
 int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::filesystem::path& out_dir) {
   std::vector<Row> rows;
   std::vector<fidelity::Inclusion> on_axis, beside;
+  std::vector<fidelity::Growth> growth;
   try {
     for (const auto& r : kReferences) {
       const Curve fem = read_curve(reference_dir / r.file);
@@ -239,24 +252,28 @@ int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::fi
     }
     on_axis = fidelity::on_axis(reference_dir);
     beside = fidelity::beside_axis(reference_dir);
+    growth = fidelity::contrast_growth(reference_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
     return 2;
   }
   bool met = print_forces(rows, reference_dir);
   met = print_on_axis(on_axis) && met;
+  met = print_growth(growth) && met;
   met = print_lateral(beside) && met;
   try {
     std::filesystem::create_directories(out_dir);
     write_csv(rows, out_dir / "fidelity.csv");
     fidelity::write_contrast_csv(on_axis, out_dir / "fidelity_contrast.csv");
     fidelity::write_lateral_csv(beside, out_dir / "fidelity_lateral.csv");
+    fidelity::write_growth_csv(growth, out_dir / "fidelity_growth.csv");
     write_png(rows, out_dir / "fidelity.png");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palpa-cli: error: %s\n", e.what());
     return 2;
   }
-  std::printf("wrote fidelity.csv, fidelity_contrast.csv, fidelity_lateral.csv and fidelity.png into %s\n",
+  std::printf("wrote fidelity.csv, fidelity_contrast.csv, fidelity_lateral.csv, fidelity_growth.csv and fidelity.png "
+              "into %s\n",
               out_dir.c_str());
   std::printf("calibrated law within %.0f %% of every force curve, and within the contrast, onset and half-width marks "
               "on every inclusion: %s\n", 100.0 * kTolerance, met ? "yes" : "NO");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,7 +17,10 @@ namespace {
 
 constexpr double kSlabWidth = 0.12;      // m: the 60 mm-radius disc stands in for a 120 mm slab
 constexpr double kLayerModulus = 5000.0; // Pa: every sweep's layer
-constexpr double kCalibratedPress = 0.002;  // m
+// m. The linear sweeps stand for the small-strain limit, so the calibrated law is read there
+// too (TumourContrast::compressed off: the same contrast at every press); its growth with
+// the press is checked against the neo-Hookean twins (bench_fidelity_growth.hpp).
+constexpr double kCalibratedPress = 0.002;
 constexpr double kPaperPress = 0.004;       // m: where the paper's tumour spring has engaged
 constexpr double kOnsetContrast = 1.10;     // the contrast a trainee is taken to notice
 constexpr double kOnsetStep = 0.00025;      // m: the press depths scanned for the onset
@@ -68,8 +72,8 @@ io::CaseFile slab(double thickness, mat::ForceModel law) {
   return author::make_modulus_slab(kSlabWidth, thickness, kLayerModulus, law);
 }
 
-// The slab with the inclusion's tumour: in Pa, or as a spring of `stiffness` N/m when that
-// is above 0; `offset` beside the point the finger presses (the slab's centre), along x.
+}  // namespace
+
 scene::Scene with_tumour(const Inclusion& r, mat::ForceModel law, double stiffness) {
   io::CaseFile file = slab(r.thickness, law);
   const auto plain = scene::Scene::build(file, "slab");
@@ -84,10 +88,35 @@ scene::Scene with_tumour(const Inclusion& r, mat::ForceModel law, double stiffne
   return scene::Scene::build(io::parse_case(io::to_json(file).dump(), "slab with a tumour"), "slab with a tumour");
 }
 
+std::vector<std::array<double, 2>> read_force_curve(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read (give --reference DIR)");
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("depth_m,force_n", 0) != 0) {
+    throw std::runtime_error(path.string() + ": line 1: expected the header depth_m,force_n");
+  }
+  std::vector<std::array<double, 2>> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::istringstream row(line);
+    double d = 0.0, f = 0.0;
+    char comma = 0;
+    if (!(row >> d >> comma >> f) || comma != ',' || !std::isfinite(d) || !std::isfinite(f) || d < 0.0) {
+      throw std::runtime_error(path.string() + ": line " + std::to_string(number) + ": expected depth_m,force_n");
+    }
+    if (d > 0.0) rows.push_back({d, f});
+  }
+  if (rows.empty()) throw std::runtime_error(path.string() + ": no depth above 0");
+  return rows;
+}
+
+namespace {
+
 // First press depth with contrast >= 1.10, scanned up to 40 % of the thickness; -1 if none.
-double onset(const scene::Scene& tumour, const scene::Scene& plain, double thickness) {
+double onset(const scene::Scene& tumour, const scene::Scene& plain, double thickness,
+             const scene::ProbeOptions& options = {}) {
   for (double d = kOnsetStep; d <= kOnsetReach * thickness + 1e-12; d += kOnsetStep) {
-    if (centre_force(tumour, d) >= kOnsetContrast * centre_force(plain, d)) return d;
+    if (centre_force(tumour, d, options) >= kOnsetContrast * centre_force(plain, d, options)) return d;
   }
   return -1.0;
 }
@@ -100,11 +129,14 @@ void evaluate(std::vector<Inclusion>& rows, bool onsets) {
     const auto calibrated = with_tumour(r, mat::ForceModel::Calibrated, 0.0);
     // The half-space rule of docs/case-authoring.md for a tumour's spring: k_t = 0.02 m x E_t.
     const auto paper = with_tumour(r, mat::ForceModel::Paper, 0.02 * r.ratio * kLayerModulus);
-    r.calibrated = centre_force(calibrated, kCalibratedPress) / centre_force(calibrated_plain, kCalibratedPress);
+    scene::ProbeOptions small_strain;
+    small_strain.force.contrast.compressed = false;
+    r.calibrated = centre_force(calibrated, kCalibratedPress, small_strain) /
+                   centre_force(calibrated_plain, kCalibratedPress, small_strain);
     r.paper = centre_force(paper, kPaperPress) / centre_force(paper_plain, kPaperPress);
     if (!onsets) continue;
     r.fem_onset = r.fem >= kOnsetContrast ? 0.0 : -1.0;  // linear: the same contrast at every press
-    r.calibrated_onset = onset(calibrated, calibrated_plain, r.thickness);
+    r.calibrated_onset = onset(calibrated, calibrated_plain, r.thickness, small_strain);
     r.paper_onset = onset(paper, paper_plain, r.thickness);
   }
 }
@@ -119,11 +151,10 @@ void write_onset(std::ofstream& out, double onset) {
 
 }  // namespace
 
-double centre_force(const scene::Scene& scene, double depth) {
+double centre_force(const scene::Scene& scene, double depth, const scene::ProbeOptions& options) {
   std::array<double, 3> top{};
   scene.body(0).body.top().evaluate(0.5, 0.5, top);
   auto state = scene.make_state();
-  const scene::ProbeOptions options;  // the engine's defaults: shear springs requested
   return scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, options).force.total.norm();
 }
 

@@ -3,6 +3,7 @@
 // finite-element sweeps of data/reference: on the pad's axis for layers of 20, 30 and 40 mm
 // (with the onset depth, the first press at which the contrast reaches 1.10), and beside
 // the axis on the 40 mm layer (with the lateral half-width of the extra force).
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -11,20 +12,29 @@
 namespace palpa::cli::fidelity {
 
 /// |F| (N) of a press `depth` straight down into the middle of a slab's top, as the engine
-/// probes (its default options: shear springs requested, followed where the law has them).
-double centre_force(const scene::Scene& scene, double depth);
+/// probes (by default its default options: shear springs requested, followed where the law
+/// has them).
+double centre_force(const scene::Scene& scene, double depth, const scene::ProbeOptions& options = {});
+
+/// The "depth_m,force_n" rows of a reference curve above 0 depth. Throws
+/// std::runtime_error naming the file and line it cannot read.
+std::vector<std::array<double, 2>> read_force_curve(const std::filesystem::path& path);
 
 /// One inclusion: a stiff sphere of radius r, centre s below the skin, modulus q times the
 /// layer's, `offset` beside the pad's axis, in a layer of 5 kPa and thickness h.
 struct Inclusion {
   double thickness = 0.0, radius = 0.0, depth = 0.0, ratio = 0.0, offset = 0.0;  // m, m, m, -, m
   double fem = 0.0;         // the FEM's contrast
-  double calibrated = 0.0;  // Palpa, the tumour in Pa, at a 2 mm press
+  double calibrated = 0.0;  // Palpa, the tumour in Pa, at a 2 mm press in the small-strain limit
   double paper = 0.0;       // the paper's law, a tumour spring of 0.02 m x E_t, at a 4 mm press
   // First press depth (m) with contrast >= 1.10, or a negative value when none reaches it
   // up to 40 % of the thickness (the FEM's: linear, so at first touch or never).
   double fem_onset = -1.0, calibrated_onset = -1.0, paper_onset = -1.0;
 };
+
+/// The 120 mm slab of 5 kPa of `inclusion`'s layer with its tumour: in Pa, or as a spring of
+/// `stiffness` N/m when that is above 0; `offset` beside the slab's centre, along x.
+scene::Scene with_tumour(const Inclusion& inclusion, mat::ForceModel law, double stiffness);
 
 /// The contrast mark: within 20 % of C - 1, or 0.02 where C - 1 is small.
 bool contrast_met(double model, double fem);

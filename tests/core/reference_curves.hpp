@@ -30,14 +30,23 @@ inline double reference_force(const std::string& name, double depth) {
 }
 
 /// |F| (N) of a press `depth` into the slab's centre, straight down, as the engine probes it
-/// (its default options: shear springs requested, followed where the body's law has them).
-inline double centre_press(const scene::Scene& scene, double depth) {
+/// (by default its default options: shear springs requested, followed where the body's law
+/// has them).
+inline double centre_press(const scene::Scene& scene, double depth, const scene::ProbeOptions& options = {}) {
   std::array<double, 3> top{};
   scene.body(0).body.top().evaluate(0.5, 0.5, top);
   auto state = scene.make_state();
-  const auto r = scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, scene::ProbeOptions{});
+  const auto r = scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, options);
   EXPECT_EQ(r.body, 0);
   return r.force.total.norm();
+}
+
+/// The engine's options with tumours in Pa felt in the small-strain limit (no growth of the
+/// contrast with the press): what the linear FEM sweeps stand for.
+inline scene::ProbeOptions small_strain() {
+  scene::ProbeOptions o;
+  o.force.contrast.compressed = false;
+  return o;
 }
 
 }  // namespace palpa::reference_test

@@ -28,6 +28,9 @@ INDENT = os.path.join(HERE, "indent.py")
 E5K = ["--modulus", "5000", "--poisson", "0.49"]
 NEO = ["--material", "neohookean", "--nlgeom", "--mesh-size", "0.0008", "--allow-partial"]
 INCLUSION = ["--inclusion-radius", "0.005", "--inclusion-depth", "0.010"]
+# Twins that tell how the contrast grows with the press: a larger, deeper inclusion on the
+# 40 mm layer, and the first inclusion under a 20 mm layer.
+INCLUSION_R10D20 = ["--inclusion-radius", "0.010", "--inclusion-depth", "0.020"]
 # The rounded finger (8 mm sphere on a cylinder, penalty contact): finer contact meshes, and
 # the 40 mm layer's on a 0.5 mm mesh (0.4 mm stops converging after 1 mm there).
 FINGER = ["--indenter", "sphere", "--material", "neohookean", "--nlgeom", "--allow-partial", "--steps", "23"]
@@ -59,6 +62,18 @@ CASES = {
     "slab40_E5k_flat_neohooke_pinned_incl1x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
                                                *INCLUSION, "--inclusion-ratio", "1",
                                                "--max-depth", "0.016", "--steps", "16"],
+    "slab40_E5k_flat_neohooke_pinned_r10d20_incl5x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
+                                                      *INCLUSION_R10D20, "--inclusion-ratio", "5",
+                                                      "--max-depth", "0.016", "--steps", "16"],
+    "slab40_E5k_flat_neohooke_pinned_r10d20_incl1x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
+                                                      *INCLUSION_R10D20, "--inclusion-ratio", "1",
+                                                      "--max-depth", "0.016", "--steps", "16"],
+    "slab20_E5k_flat_neohooke_pinned_incl5x": ["--thickness", "0.020", *E5K, *NEO, "--pin-edge",
+                                               *INCLUSION, "--inclusion-ratio", "5",
+                                               "--max-depth", "0.008", "--steps", "16"],
+    "slab20_E5k_flat_neohooke_pinned_incl1x": ["--thickness", "0.020", *E5K, *NEO, "--pin-edge",
+                                               *INCLUSION, "--inclusion-ratio", "1",
+                                               "--max-depth", "0.008", "--steps", "16"],
     "slab40_E5k_finger8_neohooke": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
                                     "--max-depth", "0.0115"],
     "slab20_E5k_finger8_neohooke": ["--thickness", "0.020", *E5K, *FINGER, "--mesh-size", "0.0004",

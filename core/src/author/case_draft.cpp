@@ -348,6 +348,7 @@ void CaseDraft::apply_stiffness_map(std::size_t b, const StiffnessMap& map, doub
   if (!grid.modulus.empty()) {
     body.erase("modulus");
     body.erase("poisson");
+    body.erase("stiffening");  // strain stiffening belongs to a modulus
     body["force_model"] = mat::to_string(grid.force_model);
   }
   body["stiffness"] = grid.stiffness;

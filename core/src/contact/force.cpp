@@ -81,6 +81,12 @@ double tumour_spring(const mat::Tumour& tumour, const Vec3& foot, const Vec3& ou
   return weight * tumour.stiffness * smooth_ramp(depth - feel.reach * above, feel.ramp);
 }
 
+double stiffening_factor(double strain, double b) {
+  const double x = b * strain;
+  if (!(x > 1e-12)) return 1.0;
+  return std::expm1(x) / x;  // the stress int_0^eps E exp(b e) de over E eps
+}
+
 double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model) {
   if (!(q > 1.0) || !(h > 0.0) || !(r > 0.0)) return 0.0;
   const double a = model.pad_radius;
@@ -92,6 +98,8 @@ double tumour_contrast(double r, double s, double q, double h, const TumourContr
          std::pow(along_axis, -model.depth_power) * std::pow((h - depth) / h, model.base_power) *
          std::pow(h / a, model.layer_power) * std::pow(gap / a, -model.gap_power);
 }
+
+double compressed_share(double strain) { return 1.0 - 0.5 * std::tanh(2.0 * std::max(strain, 0.0)); }
 
 double contrast_lateral_weight(double lateral, double r, double s, const TumourContrast& model) {
   const double half_width = model.pad_radius + model.lateral_spread * std::max(s, 0.0);
@@ -105,15 +113,21 @@ namespace {
 // A tumour given in Pa: the extra force along the way out is C - 1 times the normal
 // spring's, so it grows with the press from 0 like the tissue's own (no onset to buzz on)
 // and fades beside the pad's axis as the 3-D FEM's does.
-double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, const ForceOptions& options) {
+// Under strain stiffening the ratio of tangent moduli at the press's nominal strain counts:
+// q exp((b_t - b) eps). The geometry is the compressed layer's (TumourContrast::compressed).
+double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, double strain,
+                    const ForceOptions& options) {
   const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
   const double height = to_center.dot(contact.outward);
   const double below_skin = contact.radius - height;  // the skin is R above the foot point
   const double lateral = (to_center - height * contact.outward).norm();
   const double weight = contrast_lateral_weight(lateral, tumour.radius, below_skin, options.contrast);
   if (weight <= 0.0) return 0.0;
+  const double ratio = tumour.modulus_ratio * std::exp((tumour.stiffening - options.stiffening) * strain);
+  // The tissue over and under the tumour is thinner by the press: the contrast grows.
+  const double left = options.contrast.compressed ? compressed_share(strain) : 1.0;
   return weight * normal *
-         tumour_contrast(tumour.radius, below_skin, tumour.modulus_ratio, 2.0 * contact.radius, options.contrast);
+         tumour_contrast(tumour.radius, left * below_skin, ratio, left * 2.0 * contact.radius, options.contrast);
 }
 
 }  // namespace
@@ -125,9 +139,12 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
   // On a support the tissue compresses at most to its thickness; the rest is the wall.
   const bool anchored = body.anchored();
   const double tissue = contact.depth;  // at most 2R on a support (top_side_contact)
-  const double normal = options.finger.on ? finger_force(options.finger.modulus, options.finger.poisson, tissue,
-                                                         2.0 * contact.radius, options.finger.law)
+  const double thickness = 2.0 * contact.radius;
+  const double strain = thickness > 0.0 ? std::clamp(tissue / thickness, 0.0, 1.0) : 0.0;
+  const double linear = options.finger.on ? finger_force(options.finger.modulus, options.finger.poisson, tissue,
+                                                         thickness, options.finger.law)
                                           : contact.stiffness * tissue;
+  const double normal = linear * stiffening_factor(strain, options.stiffening);
   f.normal = normal * contact.outward;
   if (options.shear) {
     // The shear springs stretch to the probe, or to the bottom contour under it once the
@@ -137,7 +154,7 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
   }
   double tumour = 0.0;
   for (const auto& t : tumours) {
-    tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, options)
+    tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, strain, options)
                                     : tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue,
                                                     options.tumour);
   }

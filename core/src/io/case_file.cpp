@@ -262,6 +262,9 @@ void read_tissue(const json& body, const std::string& base, std::size_t n, bool 
     return;
   }
   if (!by_modulus) {
+    if (body.contains("stiffening")) {
+      v.add(base + "/stiffening", "stiffening needs the tissue given by \"modulus\" (Pa), not \"stiffness\"");
+    }
     if (!by_stiffness) v.add(base, "missing \"stiffness\" (N/m) or \"modulus\" (Pa)");
     else read_channel(body, base, "stiffness", n, {0.0, L::kMaxStiffness, false, "N/m"}, true, v, g.stiffness);
     read_force_model(body, base, v, g);
@@ -271,6 +274,10 @@ void read_tissue(const json& body, const std::string& base, std::size_t n, bool 
   if (body.contains("poisson")) {
     good = read_number(body["poisson"], base + "/poisson", "poisson", {0.0, L::kMaxPoisson, false, "(ratio)"}, v,
                        g.poisson) && good;
+  }
+  if (body.contains("stiffening")) {
+    good = read_number(body["stiffening"], base + "/stiffening", "stiffening",
+                       {0.0, L::kMaxStiffening, false, "(per unit strain)"}, v, g.stiffening) && good;
   }
   read_force_model(body, base, v, g);
   if (!good || !radius_ok) return;
@@ -391,6 +398,12 @@ void read_tumour(const json& t, std::size_t index, const std::set<std::string>& 
     v.add(base + "/modulus", "give the tumour as \"stiffness\" (N/m) or as \"modulus\" (Pa), not both");
   } else if (t.contains("modulus")) {
     read_number(t["modulus"], base + "/modulus", "modulus", {0.0, L::kMaxModulus, true, "Pa"}, v, tumour.modulus);
+    if (t.contains("stiffening")) {
+      read_number(t["stiffening"], base + "/stiffening", "stiffening", {0.0, L::kMaxStiffening, false, "(per unit strain)"},
+                  v, tumour.stiffening);
+    }
+  } else if (t.contains("stiffening")) {
+    v.add(base + "/stiffening", "stiffening needs the tumour given by \"modulus\" (Pa), not \"stiffness\"");
   } else if (!t.contains("stiffness")) {
     v.add(base, "missing \"stiffness\" (N/m) or \"modulus\" (Pa)");
   } else {
@@ -506,11 +519,13 @@ void write_tissue(const mat::BodyGrid& g, json& b) {
   if (g.modulus.empty()) {
     b.erase("modulus");
     b.erase("poisson");
+    b.erase("stiffening");
     b["stiffness"] = g.stiffness;
   } else {
     b.erase("stiffness");
     b["modulus"] = g.modulus;
     if (b.contains("poisson") || g.poisson != 0.49) b["poisson"] = g.poisson;
+    if (g.stiffening > 0.0) b["stiffening"] = g.stiffening; else b.erase("stiffening");
   }
   const auto by_default = g.modulus.empty() ? mat::ForceModel::Paper : mat::ForceModel::Calibrated;
   if (b.contains("force_model") || g.force_model != by_default) b["force_model"] = mat::to_string(g.force_model);
@@ -557,8 +572,10 @@ json to_json(const CaseFile& file) {
       if (t.modulus > 0.0) {
         o.erase("stiffness");
         o["modulus"] = t.modulus;
+        if (t.stiffening > 0.0) o["stiffening"] = t.stiffening; else o.erase("stiffening");
       } else {
         o.erase("modulus");
+        o.erase("stiffening");
         o["stiffness"] = t.stiffness;
       }
       tumours.push_back(std::move(o));

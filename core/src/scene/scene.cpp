@@ -83,7 +83,8 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       const auto& grid = file.bodies[k];
       std::optional<mat::LayerStiffnessTable> layer;
       if (!grid.modulus.empty()) layer.emplace(grid.poisson, mat::kFingertipPadRadius);
-      scene.bodies_.push_back({std::move(body), std::move(search), bounds, {}, grid.force_model, layer, grid.poisson});
+      scene.bodies_.push_back(
+          {std::move(body), std::move(search), bounds, {}, grid.force_model, layer, grid.poisson, grid.stiffening});
     } catch (const mat::FitError& e) {
       problems.push_back({"/bodies/" + std::to_string(k), std::string("cannot fit: ") + e.what()});
     }
@@ -195,6 +196,7 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
     if (sb.force_model == mat::ForceModel::Calibrated) {
       contact::ForceOptions calibrated = options.force;  // a few dozen bytes on the stack
       calibrated.shear = false;
+      calibrated.stiffening = sb.stiffening;
       if (indenter_ == mat::Indenter::Finger && sb.layer) {
         // The tissue's modulus back from the stiffness the pad would feel here.
         const double per_pascal = (*sb.layer)(1.0, 2.0 * result.contact.radius);

@@ -254,6 +254,16 @@ add("negative-modulus.json", "/bodies/0/modulus/4", "modulus", True, "modulus -1
     by_modulus_then(B + ["modulus", MID], -1.0))
 add("poisson-too-large.json", "/bodies/0/poisson", "poisson", True, "Poisson's ratio 0.5 (limit 0.499)",
     by_modulus_then(B + ["poisson"], 0.5))
+add("stiffening-without-modulus.json", "/bodies/0/stiffening", "modulus", True,
+    "strain stiffening on a body given in N/m", setitem(B + ["stiffening"], 3.6))
+add("stiffening-too-large.json", "/bodies/0/stiffening", "stiffening", True, "stiffening 25 (limit 20)",
+    by_modulus_then(B + ["stiffening"], 25.0))
+add("negative-stiffening.json", "/bodies/0/stiffening", "stiffening", True, "stiffening -1",
+    by_modulus_then(B + ["stiffening"], -1.0))
+add("tumour-stiffening-without-modulus.json", "/tumors/0/stiffening", "modulus", True,
+    "strain stiffening on a tumour given in N/m",
+    setitem(["tumors"], [{"body": "b0", "center": [0, 0, 0.005], "radius": 0.002, "stiffness": 1000,
+                          "stiffening": 11.1}]))
 add("tumour-stiffness-and-modulus.json", "/tumors/0/modulus", "not both", True,
     "a tumour with both stiffness (N/m) and modulus (Pa)",
     setitem(["tumors"], [{"body": "b0", "center": [0, 0, 0.005], "radius": 0.002, "stiffness": 1000,

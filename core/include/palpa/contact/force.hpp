@@ -45,6 +45,11 @@ struct TumourContrast {
   double gap_power = -0.4377;  ///< c: an inclusion nearly reaching the skin saturates its size effect
   double lateral_spread = 0.24;  ///< the half-width grows by this per metre of depth: the pad's field spreads
   double pad_radius = 7.5e-3;  ///< m, a
+  /// Evaluate C - 1 on the layer as the press compresses it: s and h shrink by 1 - eps at
+  /// the nominal strain eps = depth / h (saturating smoothly at half the layer), which gives
+  /// the neo-Hookean FEM twins' growth with the press within 2 %; false: the small-strain
+  /// limit, the linear sweeps' contrast at every press.
+  bool compressed = true;
 };
 
 /// w: the share of a tumour's on-axis contrast felt with the finger `lateral` (m) beside
@@ -52,9 +57,21 @@ struct TumourContrast {
 /// 0 from 2 l on; C1).
 double contrast_lateral_weight(double lateral, double r, double s, const TumourContrast& model = {});
 
+/// The calibrated normal force's factor for strain stiffening (docs/model.md, "Strain
+/// stiffening"): a layer whose tangent modulus is E exp(b eps) at the nominal strain
+/// eps = depth / thickness pushes back with (exp(b eps) - 1) / (b eps) times its small-strain
+/// force (1 for b = 0 or eps <= 0).
+double stiffening_factor(double strain, double b);
+
 /// C - 1 for a tumour of radius r, centre s below the skin, modulus ratio q, in tissue of
-/// local thickness h, on the pad's axis (q <= 1 or a degenerate layer: 0).
+/// local thickness h, on the pad's axis (q <= 1 or a degenerate layer: 0), in the small-strain
+/// limit: the linear FEM's contrast.
 double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model = {});
+
+/// The share 1 - eps' of the layer left under a press at nominal strain eps, as the contrast
+/// model sees it: eps' = tanh(2 eps) / 2, about eps up to a fifth of the layer and never more
+/// than a half (C-infinity in the press, so the force stays smooth however deep it goes).
+double compressed_share(double strain);
 
 struct ForceOptions {
   bool shear = true;          ///< the four shear springs of section 3.4
@@ -65,6 +82,8 @@ struct ForceOptions {
   /// N/m in the bundled cases) yet below what desktop devices render stably (1-3 N/mm):
   /// docs/model.md, "Bodies on a support".
   double support_stiffness = 2000.0;
+  /// b of the body's strain stiffening (calibrated law only; the scene sets it per body).
+  double stiffening = 0.0;
   TumourFeel tumour{};
   TumourContrast contrast{};
   /// A rounded finger instead of the pad (case "indenter": "finger", calibrated law only):

@@ -40,6 +40,9 @@ struct BodyGrid {
   std::vector<double> stiffness;  ///< N/m; derived from `modulus` when the body gives that
   std::vector<double> modulus;    ///< Pa, Young's modulus; empty: the body is authored in N/m
   double poisson = 0.49;          ///< Poisson's ratio of a body given by `modulus`
+  /// b in E_t(eps) = E exp(b eps): strain stiffening of a body given by `modulus`
+  /// (docs/model.md, "Strain stiffening"); 0: the linear layer.
+  double stiffening = 0.0;
   ForceModel force_model = ForceModel::Paper;
   std::vector<double> damping;    ///< N s/m; empty: the default damping ratio applies
   std::vector<double> mass;       ///< kg; empty: the default mass applies

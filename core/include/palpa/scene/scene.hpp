@@ -35,6 +35,7 @@ struct SceneBody {
   /// stiffness at a contact (a rounded finger's force needs it); empty for a body in N/m.
   std::optional<mat::LayerStiffnessTable> layer;
   double poisson = 0.49;
+  double stiffening = 0.0;  ///< b of a body given by its modulus (mat::BodyGrid::stiffening)
 };
 
 /// How far a tumour's sphere stays inside `body` (m): the smallest depth of its centre and
