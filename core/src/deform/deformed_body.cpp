@@ -214,6 +214,11 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   ++version_;
 }
 
+void DeformedBody::set_dynamics(bool on) {
+  options_.dynamics = on;
+  if (!on && held_count_ == 0 && awake_) put_at_rest();
+}
+
 void DeformedBody::release() {
   clear_hold(false);  // the finger lifts: the whole dent springs back on its oscillators
   if (!options_.dynamics) put_at_rest();

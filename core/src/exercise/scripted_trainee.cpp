@@ -514,7 +514,8 @@ void ScriptedTrainee::complete(const Waypoint& w, double t) noexcept {
 
 double ScriptedTrainee::neighbourhood_median(std::size_t body, const Vec3& top, int k, std::size_t exclude) noexcept {
   scratch_.clear();
-  const double r2 = params_.neighbourhood * params_.neighbourhood;
+  const double reach = in_pa(body) ? params_.tissue_neighbourhood : params_.neighbourhood;
+  const double r2 = reach * reach;
   for (std::size_t j = 0; j < spots_.size(); ++j) {
     const Spot& o = spots_[j];
     if (j == exclude || o.body != body || o.thickness < params_.min_thickness) continue;

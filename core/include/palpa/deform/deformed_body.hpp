@@ -60,7 +60,9 @@ class DeformedBody {
   const spline::BSplineSurface& bottom() const { return bottom_; }
   const DeformOptions& options() const { return options_; }
   /// Switches the springs on or off (off: a release puts the body at rest at once).
-  void set_dynamics(bool on) { options_.dynamics = on; }
+  /// Turning dynamics off puts a body the finger has left at rest at once (a dent still
+  /// springing back stops there); a held dent goes back when the finger leaves.
+  void set_dynamics(bool on);
 
   /// Moves the surface under the probe onto the probe (the contact is computed on the rest
   /// model, so the force it gives is the force for what is drawn). The pressed control

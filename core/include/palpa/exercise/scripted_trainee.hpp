@@ -73,6 +73,11 @@ struct StyleParameters {
   /// "Cases in kPa"; 1.18 stays above the 16 % that the layer's shape still leaves on a plain
   /// breast). The paper's springs vary by tens of per cent across a plain body with its
   /// shape, hence the higher thresholds above for bodies in N/m.
+  /// m: the neighbourhood in tissue given in Pa. A mass there lifts the force up to
+  /// 2 (a + 0.24 s) beside it (docs/model.md, "Beside the pad's axis": 29 mm for one 30 mm
+  /// deep), so the expert compares a spot with the tissue around that reach, as an
+  /// examiner compares with the rest of the breast rather than the mass's own rim.
+  double tissue_neighbourhood = 0.04;
   double tissue_suspicion_ratio = 1.20;
   double tissue_confirm_ratio = 1.18;
   double min_thickness = 0.004;  ///< m: thinner tissue holds no palpable mass; not judged
