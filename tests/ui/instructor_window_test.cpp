@@ -366,9 +366,10 @@ class InstructorWindowTest : public QObject {
     // File > New in the unit chosen: a prostate of 21 kPa (Gerling 2009).
     window.new_case(Preset::Prostate);
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 21000.0);
-    // A new window starts in N/m (see docs/user-guide.md, "Cases in kPa").
+    // A new window starts in kPa, as the bundled default case is (docs/user-guide.md).
     InstructorWindow fresh{palpa::author::CaseDraft()};
-    QCOMPARE(fresh.preset_panel()->tissue_box()->currentData().toString(), QString("nm"));
+    QCOMPARE(fresh.preset_panel()->tissue_box()->currentData().toString(), QString("kpa"));
+    QCOMPARE(fresh.draft().document()["bodies"][0]["modulus"][0].get<double>(), 3250.0);
   }
 
   // A case whose tissue is given in Pa is edited in kPa: a tumour placed by a click is

@@ -42,7 +42,7 @@ std::size_t approx_bytes(const nlohmann::json& value);
 class CaseDraft {
  public:
   /// A new case from a preset at `params`.
-  explicit CaseDraft(const PresetParams& params = preset_defaults(Preset::Breast));
+  explicit CaseDraft(const PresetParams& params = preset_defaults_in_kpa(Preset::Breast));
 
   /// Reads a case file for editing. The draft keeps a document that parses as JSON even
   /// when it does not validate (validate() then says where). Throws io::CaseError when the
