@@ -352,10 +352,19 @@ TEST(AuthorDraft, ATumourSpecInPaIsWrittenAsItsModulusAndKeptThroughEdits) {
   draft.edit_tumour(k, spec);
   EXPECT_EQ(draft.document()["tumors"][k]["modulus"], 20e3);
   EXPECT_EQ(draft.document()["tumors"][k]["radius"], 0.004);
+  // Strain stiffening goes with the modulus, is read back, and goes away with it.
+  spec.stiffening = 11.073;
+  draft.edit_tumour(k, spec);
+  EXPECT_EQ(draft.document()["tumors"][k]["stiffening"], 11.073);
+  ASSERT_TRUE(draft.validate().empty());
+  EXPECT_EQ(draft.spec(k)->stiffening, 11.073);
+  EXPECT_EQ(io::parse_case(draft.document().dump(), "kpa.json").tumours.at(0).stiffening, 11.073);
   spec.modulus = 0.0;
   spec.stiffness = 1500.0;
   draft.edit_tumour(k, spec);
   EXPECT_FALSE(draft.document()["tumors"][k].contains("modulus"));
+  EXPECT_FALSE(draft.document()["tumors"][k].contains("stiffening"));
+  ASSERT_TRUE(draft.validate().empty());
   EXPECT_EQ(draft.document()["tumors"][k]["stiffness"], 1500.0);
   // A tumour in Pa inside a body in N/m is a problem at its modulus.
   CaseDraft in_nm(preset_defaults(Preset::Slab));

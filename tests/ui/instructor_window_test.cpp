@@ -33,6 +33,7 @@
 #include <vtkPolyData.h>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/mat/tissue_materials.hpp"
 #include "palpa/engine/device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/session/session_reader.hpp"
@@ -373,7 +374,9 @@ class InstructorWindowTest : public QObject {
   }
 
   // A case whose tissue is given in Pa is edited in kPa: a tumour placed by a click is
-  // written by its modulus (the panel's 20 kPa, then 35 kPa typed in), the overlay's legend
+  // written by its modulus and stiffening (the panel's invasive carcinoma, 19.44 kPa and
+  // 11.07; then fibroadenoma picked with the keyboard; then 35 kPa and a stiffening of 3
+  // typed in, which makes the tissue "Custom"), the overlay's legend
   // reads the tissue's 5 kPa, and a grayscale map sets the modulus between the panel's
   // black and white kPa. Nothing of it turns the case into N/m.
   void aCaseInKpaIsEditedInKpa() {
@@ -390,24 +393,46 @@ class InstructorWindowTest : public QObject {
     QVERIFY2(window.open_case(path), qPrintable(window.message()));
     auto* material = window.tumour_panel()->stiffness_box();
     QCOMPARE(material->suffix(), QString(" kPa"));
-    QCOMPARE(material->value(), 20.0);
+    QCOMPARE(material->value(), 19.44);
+    auto* tissue = window.tumour_panel()->material_box();
+    auto* stiffening = window.tumour_panel()->stiffening_box();
+    QVERIFY(tissue->isVisible() && stiffening->isVisible());
+    QCOMPARE(tissue->currentData().toString(), QString("carcinoma"));
+    QCOMPARE(stiffening->value(), 11.07);
 
     const QPoint at = window.to_view(palpa::trainer::Vec3(0.0, 0.0, 0.03));
     QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, at);
     QCOMPARE(window.draft().tumour_count(), std::size_t{1});
     const auto& t = window.draft().document()["tumors"][0];
-    QCOMPARE(t["modulus"].get<double>(), 20e3);
+    QCOMPARE(t["modulus"].get<double>(), 19440.0);
+    QCOMPARE(t["stiffening"].get<double>(), palpa::mat::find_tissue_material("carcinoma")->stiffening);
     QVERIFY(!t.contains("stiffness"));
     QVERIFY(window.draft().validate().empty());
-    QCOMPARE(window.tumour_panel()->table()->item(0, 2)->text(), QString("20.0 kPa"));
+    QCOMPARE(window.tumour_panel()->table()->item(0, 2)->text(), QString("19.4 kPa, stiffening 11.1"));
 
-    // 35 typed into the selected tumour's modulus box.
+    // The tissue box, by keyboard: up one entry from the carcinoma is the fibroadenoma.
     QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
+    tissue->setFocus();
+    QTest::keyClick(tissue, Qt::Key_Up);
+    QCOMPARE(tissue->currentData().toString(), QString("fibroadenoma"));
+    QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 6480.0);
+    QVERIFY(!window.draft().document()["tumors"][0].contains("stiffening"));  // none measured
+    QCOMPARE(material->value(), 6.48);
+
+    // 35 typed into the selected tumour's modulus box, then a stiffening of 3.
     material->setFocus();
     QTest::keyClick(material, Qt::Key_A, Qt::ControlModifier);
     QTest::keyClicks(material, "35");
     QTest::keyClick(material, Qt::Key_Return);
     QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 35e3);
+    QCOMPARE(tissue->currentData().toString(), QString());  // "Custom"
+    stiffening->setFocus();
+    QTest::keyClick(stiffening, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(stiffening, "3");
+    QTest::keyClick(stiffening, Qt::Key_Return);
+    QCOMPARE(window.draft().document()["tumors"][0]["stiffening"].get<double>(), 3.0);
+    QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 35e3);
+    QVERIFY(window.draft().validate().empty());
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 5000.0);
 
     window.set_stiffness_overlay(true);

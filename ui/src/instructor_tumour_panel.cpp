@@ -1,6 +1,11 @@
 #include "palpa/ui/instructor_tumour_panel.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGridLayout>
@@ -10,6 +15,8 @@
 #include <QSignalBlocker>
 #include <QTableWidget>
 #include <QVBoxLayout>
+
+#include "palpa/mat/tissue_materials.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -27,14 +34,16 @@ QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int dec
 const QColor kProblem(255, 200, 200);
 
 // A new tumour's material: a ~100 kPa region under a fingertip in N/m (flat-punch estimate,
-// docs/case-authoring.md), or as a modulus an intermediate-grade invasive carcinoma's
-// 20 kPa (Samani, Zubovits and Plewes 2007: about 6 times breast fat).
+// docs/case-authoring.md), or in kPa the invasive ductal carcinoma of the bundled materials
+// (mat/tissue_materials.hpp: Samani's small-strain modulus, Krouskop's stiffening).
 constexpr double kDefaultStiffness = 2000.0;  // N/m
-constexpr double kDefaultModulusKpa = 20.0;   // kPa
+constexpr const char* kDefaultMaterial = "carcinoma";
 
 QString material_text(const mat::Tumour& t) {
-  return t.modulus > 0.0 ? QString::number(t.modulus * 1e-3, 'f', 1) + " kPa"
-                         : QString::number(t.stiffness, 'f', 0) + " N/m";
+  if (!(t.modulus > 0.0)) return QString::number(t.stiffness, 'f', 0) + " N/m";
+  QString text = QString::number(t.modulus * 1e-3, 'f', 1) + " kPa";
+  if (t.stiffening > 0.0) text += ", stiffening " + QString::number(t.stiffening, 'f', 1);
+  return text;
 }
 
 }  // namespace
@@ -63,10 +72,28 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
   stiffness_->setValue(kDefaultStiffness);
   material_label_ = new QLabel(tr("Stiffness"), this);
+  // In kPa: a tissue from the literature fills modulus and stiffening; editing either
+  // makes it "Custom".
+  material_ = new QComboBox(this);
+  material_->addItem(tr("Custom"), QString());
+  for (const auto& m : mat::tissue_materials()) {
+    if (m.tumour) material_->addItem(QString::fromUtf8(m.name.data(), static_cast<int>(m.name.size())),
+                                     QString::fromUtf8(m.key.data(), static_cast<int>(m.key.size())));
+  }
+  material_->setToolTip(tr("A tumour tissue from the literature: its small-strain modulus (Samani et al. 2007) "
+                           "and how fast it stiffens when compressed (Krouskop et al. 1998)"));
+  tissue_label_ = new QLabel(tr("Tissue"), this);
+  stiffening_ = spin(this, 0.0, 20.0, 0.5, 2, QString());
+  stiffening_->setToolTip(tr("How fast the tumour stiffens when pressed: its modulus grows as exp(stiffening x "
+                             "strain). Carcinoma about 11, glandular tissue 3.6, fat 0; 0: none"));
+  stiffening_label_ = new QLabel(tr("Stiffening"), this);
   form->addRow(tr("Depth"), depth_);
   form->addRow(tr("Radius"), radius_);
+  form->addRow(tissue_label_, material_);
   form->addRow(material_label_, stiffness_);
+  form->addRow(stiffening_label_, stiffening_);
   layout->addLayout(form);
+  show_material_controls(false);
 
   randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
   layout->addWidget(randomize_);
@@ -93,9 +120,17 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
     show_selected();
     emit selection_changed(selected());
   });
-  for (auto* box : {depth_, radius_, stiffness_}) {
-    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this, box] { emit_spec(box); });
+  for (auto* box : {depth_, radius_, stiffness_, stiffening_}) {
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this, box] {
+      if (box == stiffness_ || box == stiffening_) match_material();
+      emit_spec(box);
+    });
   }
+  connect(material_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] {
+    if (updating_) return;
+    if (!fill_material(material_->currentData().toString())) return;  // "Custom": keep the values
+    emit_spec(nullptr);
+  });
   connect(randomize_, &QCheckBox::toggled, this, [this] { emit_placement(); });
   for (auto* box : rule_) {
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_placement(); });
@@ -140,12 +175,46 @@ void InstructorTumourPanel::set_material_unit(bool kpa) {
   const QSignalBlocker block(stiffness_);
   material_label_->setText(kpa ? tr("Modulus") : tr("Stiffness"));
   stiffness_->setSuffix(kpa ? tr(" kPa") : tr(" N/m"));
-  stiffness_->setDecimals(kpa ? 1 : 0);
+  stiffness_->setDecimals(kpa ? 2 : 0);
   stiffness_->setRange(0.0, kpa ? 1e4 : 1e5);
   stiffness_->setSingleStep(kpa ? 1.0 : 100.0);
-  stiffness_->setToolTip(kpa ? tr("Young's modulus of the tumour (breast carcinoma: about 10-45 kPa)")
+  stiffness_->setToolTip(kpa ? tr("Young's modulus of the tumour at small strain (breast carcinoma: about 10-45 kPa)")
                              : tr("Stiffness per skeleton point the finger meets over the tumour"));
-  stiffness_->setValue(kpa ? kDefaultModulusKpa : kDefaultStiffness);
+  show_material_controls(kpa);
+  if (kpa) {
+    fill_material(kDefaultMaterial);
+  } else {
+    stiffness_->setValue(kDefaultStiffness);
+  }
+}
+
+void InstructorTumourPanel::show_material_controls(bool kpa) {
+  for (QWidget* w : std::initializer_list<QWidget*>{tissue_label_, material_, stiffening_label_, stiffening_}) {
+    w->setVisible(kpa);
+  }
+}
+
+bool InstructorTumourPanel::fill_material(const QString& key) {
+  const auto* m = mat::find_tissue_material(key.toStdString());
+  if (!m) return false;
+  const QSignalBlocker block_modulus(stiffness_), block_stiffening(stiffening_), block_material(material_);
+  stiffness_->setValue(m->modulus * 1e-3);
+  stiffening_->setValue(m->stiffening);
+  material_->setCurrentIndex(std::max(0, material_->findData(key)));
+  return true;
+}
+
+void InstructorTumourPanel::match_material() {
+  const QSignalBlocker block(material_);
+  int match = 0;  // "Custom"
+  for (int i = 1; i < material_->count(); ++i) {
+    const auto* m = mat::find_tissue_material(material_->itemData(i).toString().toStdString());
+    if (m && std::abs(m->modulus * 1e-3 - stiffness_->value()) < 0.005 &&
+        std::abs(m->stiffening - stiffening_->value()) < 0.005) {
+      match = i;
+    }
+  }
+  material_->setCurrentIndex(match);
 }
 
 std::optional<std::size_t> InstructorTumourPanel::selected() const {
@@ -175,6 +244,8 @@ void InstructorTumourPanel::show_selected() {
       depth_->setValue(s->depth * 1e3);
       radius_->setValue(s->radius * 1e3);
       stiffness_->setValue(in_kpa_ ? s->modulus * 1e-3 : s->stiffness);
+      stiffening_->setValue(in_kpa_ ? s->stiffening : 0.0);
+      match_material();
     }
     const auto rule = draft_->placement(*k);
     randomize_->setChecked(rule.has_value());
@@ -187,7 +258,13 @@ void InstructorTumourPanel::show_selected() {
 }
 
 author::TumourSpec InstructorTumourPanel::spec() const {
-  if (in_kpa_) return {depth_->value() * 1e-3, radius_->value() * 1e-3, 0.0, stiffness_->value() * 1e3};
+  if (in_kpa_) {
+    // A tissue from the list is written with its exact values, not as the boxes round them.
+    if (const auto* m = mat::find_tissue_material(material_->currentData().toString().toStdString())) {
+      return {depth_->value() * 1e-3, radius_->value() * 1e-3, 0.0, m->modulus, m->stiffening};
+    }
+    return {depth_->value() * 1e-3, radius_->value() * 1e-3, 0.0, stiffness_->value() * 1e3, stiffening_->value()};
+  }
   return {depth_->value() * 1e-3, radius_->value() * 1e-3, stiffness_->value(), 0.0};
 }
 
@@ -212,13 +289,15 @@ void InstructorTumourPanel::emit_spec(const QDoubleSpinBox* changed) {
       merged.radius = t->radius;
       merged.stiffness = t->stiffness;
       merged.modulus = t->modulus;
+      merged.stiffening = t->stiffening;
     }
     if (changed == depth_) merged.depth = s.depth;
     if (changed == radius_) merged.radius = s.radius;
-    if (changed == stiffness_) {
+    if (changed == stiffness_ || changed == nullptr) {  // nullptr: a tissue was picked
       merged.stiffness = s.stiffness;
       merged.modulus = s.modulus;
     }
+    if (changed == stiffening_ || changed == nullptr) merged.stiffening = s.stiffening;
     s = merged;
   }
   emit spec_changed(*k, s);
@@ -238,7 +317,7 @@ void InstructorTumourPanel::clear_problems() {
       }
     }
   }
-  for (auto* box : {depth_, radius_, stiffness_}) box->setStyleSheet(QString());
+  for (auto* box : {depth_, radius_, stiffness_, stiffening_}) box->setStyleSheet(QString());
   for (auto* box : rule_) box->setStyleSheet(QString());
 }
 
@@ -249,7 +328,7 @@ void InstructorTumourPanel::add_problem(std::size_t k, const QString& field, con
   int column = -1;
   if (field.startsWith("center")) column = 0;
   if (field.startsWith("radius")) column = 1;
-  if (field.startsWith("stiffness") || field.startsWith("modulus")) column = 2;
+  if (field.startsWith("stiffness") || field.startsWith("modulus") || field.startsWith("stiffening")) column = 2;
   if (field.startsWith("placement")) column = 3;
   for (int c = 0; c < table_->columnCount(); ++c) {
     if (auto* item = table_->item(row, c); item && (column < 0 || c == column)) {
@@ -261,7 +340,10 @@ void InstructorTumourPanel::add_problem(std::size_t k, const QString& field, con
     const QString red = "background: #ffc8c8;";
     if (column == 0 || column < 0) depth_->setStyleSheet(red);
     if (column == 1) radius_->setStyleSheet(red);
-    if (column == 2) stiffness_->setStyleSheet(red);
+    if (column == 2) {
+      stiffness_->setStyleSheet(red);
+      stiffening_->setStyleSheet(red);
+    }
     if (column == 3) {
       for (auto* box : rule_) box->setStyleSheet(red);
     }

@@ -39,12 +39,13 @@ std::optional<double> read_number(const json& obj, const char* key) {
   return obj[key].get<double>();
 }
 
-/// A tumour's material as the spec gives it: "modulus" (Pa) when it has one, else
-/// "stiffness" (N/m); the other key is removed.
+/// A tumour's material as the spec gives it: "modulus" (Pa) with its "stiffening" when it
+/// has one, else "stiffness" (N/m); the other keys are removed.
 void write_material(const TumourSpec& spec, json& t) {
   const bool by_modulus = spec.modulus > 0.0;
   t[by_modulus ? "modulus" : "stiffness"] = by_modulus ? spec.modulus : spec.stiffness;
   t.erase(by_modulus ? "stiffness" : "modulus");
+  if (by_modulus && spec.stiffening > 0.0) t["stiffening"] = spec.stiffening; else t.erase("stiffening");
 }
 
 double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
@@ -389,6 +390,7 @@ std::optional<mat::Tumour> CaseDraft::tumour(std::size_t k) const {
   out.radius = *r;
   out.stiffness = s.value_or(0.0);
   out.modulus = s ? 0.0 : *e;
+  out.stiffening = s ? 0.0 : read_number(t, "stiffening").value_or(0.0);
   return out;
 }
 
@@ -431,7 +433,7 @@ std::optional<TumourSpec> CaseDraft::spec(std::size_t k) const {
   const auto t = tumour(k);
   const auto a = anchor(k);
   if (!t || !a) return std::nullopt;
-  return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness, t->modulus};
+  return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness, t->modulus, t->stiffening};
 }
 
 std::optional<exercise::Placement> CaseDraft::placement(std::size_t k) const {

@@ -34,6 +34,8 @@ struct TumourSpec {
   /// Pa; > 0: the tumour is written by its Young's modulus instead of `stiffness` (its body
   /// must give its tissue in Pa too).
   double modulus = 0.0;
+  /// With a modulus: its strain stiffening b (E exp(b eps); docs/model.md), 0: none.
+  double stiffening = 0.0;
 };
 
 /// Approximate memory (bytes) a JSON value holds: its nodes, strings and containers.

@@ -11,6 +11,7 @@
 #include "palpa/author/case_draft.hpp"
 
 class QCheckBox;
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
@@ -43,6 +44,10 @@ class InstructorTumourPanel : public QGroupBox {
   QDoubleSpinBox* depth_box() const { return depth_; }
   QDoubleSpinBox* radius_box() const { return radius_; }
   QDoubleSpinBox* stiffness_box() const { return stiffness_; }
+  /// In kPa: the tumour tissue picked from the literature ("Custom" when edited by hand), and
+  /// its strain stiffening b.
+  QComboBox* material_box() const { return material_; }
+  QDoubleSpinBox* stiffening_box() const { return stiffening_; }
   QCheckBox* randomize_box() const { return randomize_; }
   /// u low, u high, v low, v high, depth low, depth high.
   QDoubleSpinBox* rule_box(int index) const { return rule_[index]; }
@@ -63,6 +68,12 @@ class InstructorTumourPanel : public QGroupBox {
   /// Shows the material box in kPa (a modulus) or N/m (a stiffness); resets its value to
   /// the unit's default when the unit changes.
   void set_material_unit(bool kpa);
+  void show_material_controls(bool kpa);
+  /// Puts the tissue `key`'s modulus and stiffening in the boxes (emits nothing); false for
+  /// no such tissue ("Custom").
+  bool fill_material(const QString& key);
+  /// Shows the tissue whose values the boxes hold, or "Custom".
+  void match_material();
 
   const author::CaseDraft* draft_ = nullptr;
   QTableWidget* table_ = nullptr;
@@ -70,6 +81,10 @@ class InstructorTumourPanel : public QGroupBox {
   QDoubleSpinBox* radius_ = nullptr;
   QDoubleSpinBox* stiffness_ = nullptr;  // stiffness (N/m) or modulus (kPa): in_kpa_
   QLabel* material_label_ = nullptr;
+  QComboBox* material_ = nullptr;
+  QLabel* tissue_label_ = nullptr;
+  QDoubleSpinBox* stiffening_ = nullptr;
+  QLabel* stiffening_label_ = nullptr;
   bool in_kpa_ = false;
   QCheckBox* randomize_ = nullptr;
   QDoubleSpinBox* rule_[6] = {};
