@@ -125,12 +125,12 @@ def make_default():
         "modulus": CARCINOMA_E,
         "stiffening": CARCINOMA_B,
         # Seeded exercises move the centre (docs/case-format.md, "placement"): anywhere
-        # over the breast's interior, its centre 45-55 % of the thickness below the skin
+        # over the breast's interior, its centre 40-50 % of the thickness below the skin
         # (about on the skeleton). A light press (a fifth of the thickness) feels it at most
         # about 1.15 times firmer, less than a finger tells apart; a press to half the
         # thickness more than 1.2 times (docs/user-guide.md, "Cases in kPa";
         # tests/core/exercise_placement_test.cpp).
-        "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.45, 0.55]},
+        "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.4, 0.5]},
     }
     check_tumor_inside(b, tumor)
     return case(
@@ -142,7 +142,7 @@ def make_default():
             "as glandular tissue does). One 14 mm invasive carcinoma (19.4 kPa at small "
             "strain, stiffening much faster) at mid-depth in the upper-outer region: a "
             "light press hardly feels it, a deep one does. Seeded exercises place it at "
-            "random over the interior, 45-55 % of the thickness below the skin."
+            "random over the interior, 40-50 % of the thickness below the skin."
         ),
         notes="damping and mass are omitted: the defaults apply (mass 1e-3 kg, damping ratio 0.7 per point).",
         tumors=[tumor],

@@ -348,7 +348,8 @@ class ReviewWindowTest : public QObject {
     const int area = chart.width() * chart.height();
     const int white = pixels_near(image, QColor(255, 255, 255), 2, chart);
     const int force = pixels_near(image, QColor(128, 0, 160), 30, chart);
-    const int depth = pixels_near(image, QColor(66, 146, 198), 30, chart);
+    // The depth line in the medium and the deep level's blues (session_charts.cpp).
+    const int depth = pixels_near(image, QColor(66, 146, 198), 30, chart) + pixels_near(image, QColor(8, 69, 148), 30, chart);
     QVERIFY2(white > area / 5, qPrintable(QString::number(white)));
     QVERIFY2(force > area / 50, qPrintable(QString::number(force)));
     QVERIFY2(depth > area / 50, qPrintable(QString::number(depth)));

@@ -99,7 +99,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   layout->addWidget(randomize_);
   auto* rules = new QGridLayout;
   const char* names[] = {"u", "v", "depth"};
-  const double defaults[] = {0.3, 0.7, 0.3, 0.7, 0.45, 0.55};  // default.json's rule
+  const double defaults[] = {0.3, 0.7, 0.3, 0.7, 0.4, 0.5};  // default.json's rule
   for (int r = 0; r < 3; ++r) {
     rules->addWidget(new QLabel(tr(names[r]), this), r, 0);
     for (int c = 0; c < 2; ++c) {

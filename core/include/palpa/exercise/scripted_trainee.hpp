@@ -42,10 +42,12 @@ struct StyleParameters {
   double strip_spacing = 0.013;  ///< m, between strips (arc length across them)
   double spot_step = 0.007;      ///< m, between spots along a strip
   int skip_every = 0;            ///< skip strip k when k % skip_every == skip_every - 1 (0: none)
-  /// Pressure levels, increasing. The deep one stops at half the thickness: on the
-  /// default breast's 50 mm centre the tissue alone already pushes back ~23 N at 60 %,
-  /// so a tumour there would hit the 30 N force cap and barely stand out.
-  std::array<double, 3> levels{0.10, 0.30, 0.50};
+  /// Pressure levels, increasing. The deep one stops just past half the thickness, the
+  /// default deep band's edge (a person aims past a threshold, and a press planned exactly
+  /// on it would score as medium wherever round-off in the thickness falls below it); much
+  /// deeper the tissue alone pushes back hard (tissue stiffens), so a tumour stands out less
+  /// against the force limit.
+  std::array<double, 3> levels{0.10, 0.30, 0.52};
   int level_count = 3;
   /// N: a press stops going deeper when the felt |F| reaches this and holds the
   /// indentation reached (closed loop on the force felt), as a real examiner limits force.
