@@ -157,6 +157,7 @@ void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
                              draft.placement(k) ? tr("yes") : tr("no")};
     for (int c = 0; c < 4; ++c) {
       auto* item = new QTableWidgetItem(cells[c]);
+      item->setToolTip(cells[c]);  // whole where the column is too narrow for it
       table_->setItem(row, c, item);
     }
   }
@@ -313,7 +314,7 @@ void InstructorTumourPanel::clear_problems() {
     for (int c = 0; c < table_->columnCount(); ++c) {
       if (auto* item = table_->item(r, c)) {
         item->setBackground(QBrush());
-        item->setToolTip(QString());
+        item->setToolTip(item->text());
       }
     }
   }
