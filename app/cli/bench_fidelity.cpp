@@ -48,6 +48,8 @@ constexpr Reference kReferences[] = {
     {"slab30_E5k_flat_neohooke_pinned.csv", 0.030, 5000.0, "30 mm, neo-Hookean, edge pinned", false},
     {"slab40_E5k_finger8_neohooke.csv", 0.040, 5000.0, "40 mm, neo-Hookean, 8 mm finger", true,
      mat::Indenter::Finger},
+    {"slab40_E5k_finger8_neohooke_incl1x.csv", 0.040, 5000.0, "40 mm, neo-Hookean, 8 mm finger, 1x twin", false,
+     mat::Indenter::Finger},
     {"slab20_E5k_finger8_neohooke.csv", 0.020, 5000.0, "20 mm, neo-Hookean, 8 mm finger", true,
      mat::Indenter::Finger},
 };
@@ -195,16 +197,20 @@ bool print_growth(const std::vector<fidelity::Growth>& twins) {
   bool met = true;
   for (const auto& g : twins) {
     const auto& first = g.rows.front();
-    std::printf("%.0f mm layer, r %.0f mm, centre %.0f mm deep, %gx:\n  %8s | %7s | %10s %7s\n", first.thickness * 1e3,
-                first.radius * 1e3, first.depth * 1e3, first.ratio, "press", "FEM", "calibrated", "error");
+    std::printf("%.0f mm layer, r %.0f mm, centre %.0f mm deep, %gx%s:\n  %8s | %7s | %10s %7s\n", first.thickness * 1e3,
+                first.radius * 1e3, first.depth * 1e3, first.ratio,
+                g.finger ? ", the 8 mm rounded finger (shown, not held to the marks: the pad's contrast model is "
+                           "applied to the finger's force)"
+                         : "",
+                "press", "FEM", "calibrated", "error");
     for (const auto& r : g.rows) {
       const bool ok = fidelity::contrast_met(r.calibrated, r.fem);
-      met = met && ok;
+      met = met && (ok || g.finger);
       std::printf("  %5.2f mm | %7.4f | %10.4f %+6.3f%s\n", r.press * 1e3, r.fem, r.calibrated, r.calibrated - r.fem,
                   ok ? " " : "!");
     }
     const bool ok = fidelity::onset_met(g.calibrated_onset, g.fem_onset);
-    met = met && ok;
+    met = met && (ok || g.finger);
     std::printf("  onset (to %.2f mm, the twin's reach): FEM %s, calibrated %s%s\n", g.rows.back().press * 1e3,
                 onset_text(g.fem_onset).c_str(), onset_text(g.calibrated_onset).c_str(),
                 ok ? "" : " (more than 2 mm off)");
@@ -276,7 +282,8 @@ int run_bench_fidelity(const std::filesystem::path& reference_dir, const std::fi
               "into %s\n",
               out_dir.c_str());
   std::printf("calibrated law within %.0f %% of every force curve, and within the contrast, onset and half-width marks "
-              "on every inclusion: %s\n", 100.0 * kTolerance, met ? "yes" : "NO");
+              "on every inclusion under the pad: %s (a tumour under the rounded finger is shown above, not yet held to "
+              "the marks)\n", 100.0 * kTolerance, met ? "yes" : "NO");
   return met ? 0 : 1;
 }
 

@@ -76,6 +76,7 @@ io::CaseFile slab(double thickness, mat::ForceModel law) {
 
 scene::Scene with_tumour(const Inclusion& r, mat::ForceModel law, double stiffness) {
   io::CaseFile file = slab(r.thickness, law);
+  file.indenter = r.indenter;
   const auto plain = scene::Scene::build(file, "slab");
   std::array<double, 3> top{};
   plain.body(0).body.top().evaluate(0.5, 0.5, top);

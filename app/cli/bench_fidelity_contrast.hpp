@@ -30,6 +30,7 @@ struct Inclusion {
   // First press depth (m) with contrast >= 1.10, or a negative value when none reaches it
   // up to 40 % of the thickness (the FEM's: linear, so at first touch or never).
   double fem_onset = -1.0, calibrated_onset = -1.0, paper_onset = -1.0;
+  mat::Indenter indenter = mat::Indenter::Pad;  // what presses (the sweeps: the flat pad)
 };
 
 /// The 120 mm slab of 5 kPa of `inclusion`'s layer with its tumour: in Pa, or as a spring of

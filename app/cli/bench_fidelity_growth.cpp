@@ -25,6 +25,7 @@ struct TwinFiles {
   const char* stiff;  // the 5x inclusion
   const char* plain;  // its 1x twin, the same mesh
   double thickness, radius, depth, ratio;
+  mat::Indenter indenter = mat::Indenter::Pad;
 };
 constexpr TwinFiles kTwins[] = {
     {"slab40_E5k_flat_neohooke_pinned_incl5x.csv", "slab40_E5k_flat_neohooke_pinned_incl1x.csv", 0.040, 0.005, 0.010,
@@ -33,16 +34,24 @@ constexpr TwinFiles kTwins[] = {
      0.010, 0.020, 5.0},
     {"slab20_E5k_flat_neohooke_pinned_incl5x.csv", "slab20_E5k_flat_neohooke_pinned_incl1x.csv", 0.020, 0.005, 0.010,
      5.0},
+    // The rounded finger's contrast: the pad's model is applied to its force, which the
+    // twin shows is too low at a shallow press (docs/model.md, "Tumours in Pa").
+    {"slab40_E5k_finger8_neohooke_incl5x.csv", "slab40_E5k_finger8_neohooke_incl1x.csv", 0.040, 0.005, 0.010, 5.0,
+     mat::Indenter::Finger},
 };
 
 Growth compare(const TwinFiles& t, const std::filesystem::path& reference_dir) {
   const auto stiff = read_force_curve(reference_dir / t.stiff);
   const auto plain = read_force_curve(reference_dir / t.plain);
-  const Inclusion inclusion{t.thickness, t.radius, t.depth, t.ratio};
+  Inclusion inclusion{t.thickness, t.radius, t.depth, t.ratio};
+  inclusion.indenter = t.indenter;
   const auto with = with_tumour(inclusion, mat::ForceModel::Calibrated, 0.0);
-  const auto without = scene::Scene::build(
-      author::make_modulus_slab(kSlabWidth, t.thickness, kLayerModulus, mat::ForceModel::Calibrated), "slab");
+  io::CaseFile plain_file =
+      author::make_modulus_slab(kSlabWidth, t.thickness, kLayerModulus, mat::ForceModel::Calibrated);
+  plain_file.indenter = t.indenter;
+  const auto without = scene::Scene::build(plain_file, "slab");
   Growth g;
+  g.finger = t.indenter == mat::Indenter::Finger;
   const std::size_t n = std::min(stiff.size(), plain.size());
   for (std::size_t k = 0; k < n; ++k) {
     if (stiff[k][0] != plain[k][0]) {
@@ -75,12 +84,13 @@ std::vector<Growth> contrast_growth(const std::filesystem::path& reference_dir) 
 
 void write_growth_csv(const std::vector<Growth>& twins, const std::filesystem::path& path) {
   std::ofstream out(path);
-  out << "thickness_m,inclusion_radius_m,inclusion_depth_m,modulus_ratio,press_m,fem_contrast,calibrated_contrast\n";
+  out << "thickness_m,inclusion_radius_m,inclusion_depth_m,modulus_ratio,press_m,fem_contrast,calibrated_contrast,"
+         "indenter\n";
   for (const auto& g : twins) {
     for (const auto& r : g.rows) {
       char line[200];
-      std::snprintf(line, sizeof line, "%.3f,%.4f,%.4f,%g,%.5f,%.5f,%.5f\n", r.thickness, r.radius, r.depth, r.ratio,
-                    r.press, r.fem, r.calibrated);
+      std::snprintf(line, sizeof line, "%.3f,%.4f,%.4f,%g,%.5f,%.5f,%.5f,%s\n", r.thickness, r.radius, r.depth,
+                    r.ratio, r.press, r.fem, r.calibrated, g.finger ? "finger" : "pad");
       out << line;
     }
   }

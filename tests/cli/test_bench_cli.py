@@ -177,6 +177,27 @@ class BenchFidelity(unittest.TestCase):
                 fem, model = float(r["fem_contrast"]), float(r["calibrated_contrast"])
                 self.assertLessEqual(abs(model - fem), max(0.2 * (fem - 1.0), 0.02), r)
             self.assertIn("half-width: FEM", res.stdout)
+            # Growing with the press: the neo-Hookean twins, each row the 5x file over its 1x
+            # twin at that press; under the pad within the mark at every press.
+            with open(os.path.join(d, "fidelity_growth.csv")) as fh:
+                growth = list(csv.DictReader(fh))
+            self.assertEqual(list(growth[0].keys())[-1], "indenter")
+            pads = [r for r in growth if r["indenter"] == "pad"]
+            self.assertGreaterEqual(len(pads), 15)
+            self.assertTrue(any(r["indenter"] == "finger" for r in growth))
+            with open(os.path.join(REPO, "data", "reference", "slab40_E5k_flat_neohooke_pinned_r10d20_incl5x.csv")) as f5, \
+                    open(os.path.join(REPO, "data", "reference", "slab40_E5k_flat_neohooke_pinned_r10d20_incl1x.csv")) as f1:
+                stiff = {float(r["depth_m"]): float(r["force_n"]) for r in csv.DictReader(f5)}
+                plain = {float(r["depth_m"]): float(r["force_n"]) for r in csv.DictReader(f1)}
+            checked = 0
+            for r in pads:
+                fem, model = float(r["fem_contrast"]), float(r["calibrated_contrast"])
+                self.assertLessEqual(abs(model - fem), max(0.2 * (fem - 1.0), 0.02), r)
+                if abs(float(r["inclusion_radius_m"]) - 0.010) < 1e-9:
+                    depth = min(stiff, key=lambda k: abs(k - float(r["press_m"])))
+                    self.assertAlmostEqual(fem, stiff[depth] / plain[depth], places=4)
+                    checked += 1
+            self.assertEqual(checked, 4)
             with open(os.path.join(d, "fidelity.png"), "rb") as fh:
                 self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
             # A folder without the curves: one line naming the file, exit 2.
