@@ -352,16 +352,31 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
     QCOMPARE(window.draft().preset()->modulus, 12500.0);
     QVERIFY(window.draft().validate().empty());
+    // Strain stiffening, typed in: written beside the modulus and kept in the preset.
+    auto* stiffening = panel->stiffening_box();
+    QVERIFY(stiffening->isVisible());
+    QCOMPARE(stiffening->value(), 0.0);
+    stiffening->setFocus();
+    QTest::keyClick(stiffening, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(stiffening, "3.59");
+    QTest::keyClick(stiffening, Qt::Key_Return);
+    QCOMPARE(window.draft().document()["bodies"][0]["stiffening"].get<double>(), 3.59);
+    QCOMPARE(window.draft().preset()->stiffening, 3.59);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
+    QVERIFY(window.draft().validate().empty());
 
     panel->tissue_box()->setCurrentIndex(panel->tissue_box()->findData(QString("nm")));
     const auto& slab = window.draft().document()["bodies"][0];
     QVERIFY(!slab.contains("modulus"));
+    QVERIFY(!slab.contains("stiffening"));
+    QVERIFY(!stiffening->isVisible());
     QCOMPARE(slab["stiffness"][0].get<double>(), palpa::author::preset_defaults(Preset::Slab).stiffness);
     QCOMPARE(panel->stiffness_box()->suffix(), QString(" N/m"));
     QCOMPARE(window.tumour_panel()->stiffness_box()->suffix(), QString(" N/m"));
     // Undo goes back to the slab in kPa, and the controls follow.
     window.undo_action()->trigger();
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
+    QCOMPARE(stiffening->value(), 3.59);
     QCOMPARE(panel->tissue_box()->currentData().toString(), QString("kpa"));
     QCOMPARE(panel->stiffness_box()->value(), 12.5);
     // File > New in the unit chosen: a prostate of 21 kPa (Gerling 2009).

@@ -48,6 +48,14 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   stiffness_ = spin(this, tr(" N/m"), 0);
   stiffness_label_ = new QLabel(tr("Stiffness"), this);
   form->addRow(stiffness_label_, stiffness_);
+  // In kPa: how fast the tissue stiffens when pressed (fibroglandular tissue 3.59, fat 0).
+  stiffening_ = spin(this, QString(), 2);
+  stiffening_->setRange(0.0, 20.0);
+  stiffening_->setSingleStep(0.5);
+  stiffening_->setToolTip(tr("How fast the tissue stiffens when pressed: its modulus grows as exp(stiffening x "
+                             "strain). Fibroglandular tissue 3.59, fat 0 (Krouskop et al. 1998); 0: none"));
+  stiffening_label_ = new QLabel(tr("Stiffening"), this);
+  form->addRow(stiffening_label_, stiffening_);
   note_ = new QLabel(this);
   note_->setWordWrap(true);
   form->addRow(note_);
@@ -71,7 +79,7 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
     cols_ = p.cols;
     {
       const QSignalBlocker blockers[] = {QSignalBlocker(width_), QSignalBlocker(length_), QSignalBlocker(thickness_),
-                                         QSignalBlocker(stiffness_)};
+                                         QSignalBlocker(stiffness_), QSignalBlocker(stiffening_)};
       set_limits(p.preset);
       width_->setValue(p.width * 1e3);
       length_->setValue(p.length * 1e3);
@@ -85,12 +93,12 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   connect(tissue_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
     if (updating_ || index < 0) return;
     {
-      const QSignalBlocker block(stiffness_);
+      const QSignalBlocker blockers[] = {QSignalBlocker(stiffness_), QSignalBlocker(stiffening_)};
       show_tissue(defaults(kPresets[std::max(0, preset_->currentIndex())]));
     }
     emit_params();
   });
-  for (auto* box : {width_, length_, thickness_, stiffness_}) {
+  for (auto* box : {width_, length_, thickness_, stiffness_, stiffening_}) {
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_params(); });
   }
   connect(import_, &QPushButton::clicked, this, &InstructorPresetPanel::import_requested);
@@ -131,12 +139,15 @@ void InstructorPresetPanel::show_tissue(const author::PresetParams& p) {
                              : tr("Tissue stiffness per skeleton point (the breast's glandular centre; its fatty "
                                   "periphery is 0.4 times this)"));
   stiffness_->setValue(kpa ? p.modulus * 1e-3 : p.stiffness);
+  stiffening_->setValue(kpa ? p.stiffening : 0.0);
+  stiffening_->setVisible(kpa);
+  stiffening_label_->setVisible(kpa);
 }
 
 void InstructorPresetPanel::show_params(const std::optional<author::PresetParams>& params) {
   updating_ = true;
-  const QSignalBlocker blockers[] = {QSignalBlocker(preset_), QSignalBlocker(width_), QSignalBlocker(length_),
-                                     QSignalBlocker(thickness_), QSignalBlocker(stiffness_)};
+  const QSignalBlocker blockers[] = {QSignalBlocker(preset_),    QSignalBlocker(width_),     QSignalBlocker(length_),
+                                     QSignalBlocker(thickness_), QSignalBlocker(stiffness_), QSignalBlocker(stiffening_)};
   const auto p = params ? *params : author::preset_defaults_in_kpa(author::Preset::Breast);
   for (int k = 0; k < 4; ++k) {
     if (kPresets[k] == p.preset) preset_->setCurrentIndex(k);
@@ -159,6 +170,7 @@ author::PresetParams InstructorPresetPanel::params() const {
   p.thickness = thickness_->value() * 1e-3;
   if (tissue_in_kpa()) {
     p.modulus = stiffness_->value() * 1e3;
+    p.stiffening = stiffening_->value();
   } else {
     p.modulus = 0.0;
     p.stiffness = stiffness_->value();

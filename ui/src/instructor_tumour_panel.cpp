@@ -98,15 +98,20 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
   layout->addWidget(randomize_);
   auto* rules = new QGridLayout;
-  const char* names[] = {"u", "v", "depth"};
+  // The rule's u, v and depth fractions in words: u runs along x and v along y over the
+  // body (its skeleton's parameters, about the share of its extent), depth is the share of
+  // the local thickness below the skin.
+  const char* names[] = {"Along x", "Along y", "Depth"};
   const double defaults[] = {0.3, 0.7, 0.3, 0.7, 0.4, 0.5};  // default.json's rule
   for (int r = 0; r < 3; ++r) {
     rules->addWidget(new QLabel(tr(names[r]), this), r, 0);
     for (int c = 0; c < 2; ++c) {
       auto* box = spin(this, 0.0, 1.0, 0.05, 2, QString());
       box->setValue(defaults[2 * r + c]);
-      box->setToolTip(r < 2 ? tr("Fraction of the body's skeleton parameter (0 to 1)")
-                            : tr("Fraction of the local thickness below the skin (0.5: on the skeleton)"));
+      box->setToolTip(r == 0   ? tr("From, to: where along the body's x extent the centre may go (0 one end, 1 the other)")
+                      : r == 1 ? tr("From, to: where along the body's y extent the centre may go (0 one end, 1 the other)")
+                               : tr("From, to: share of the local thickness above the centre (0 at the skin, 0.5 "
+                                    "mid-depth, 1 at the base)"));
       rule_[2 * r + c] = box;
       rules->addWidget(box, r, 1 + c);
     }

@@ -153,6 +153,8 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
   check("thickness", p.thickness, limits.thickness);
   if (p.modulus > 0.0) {
     check("modulus", p.modulus, limits.modulus);
+    const double stiffening[2] = {0.0, io::CaseLimits::kMaxStiffening};
+    check("stiffening", p.stiffening, stiffening);
   } else {
     check("stiffness", p.stiffness, limits.stiffness);
   }
@@ -207,6 +209,7 @@ mat::BodyGrid make_preset_body(const PresetParams& in) {
     g.modulus.assign(g.radius.size(), p.modulus);
     g.stiffness = mat::layer_stiffness_field(g.modulus, g.radius, g.poisson);
     g.force_model = mat::ForceModel::Calibrated;
+    g.stiffening = p.stiffening;
   }
   return g;
 }
@@ -255,6 +258,7 @@ nlohmann::json to_json(const PresetParams& p) {
                         {"thickness", p.thickness},    {"stiffness", p.stiffness}, {"rows", p.rows},
                         {"cols", p.cols}};
   if (p.modulus > 0.0) out["modulus"] = p.modulus;
+  if (p.modulus > 0.0 && p.stiffening > 0.0) out["stiffening"] = p.stiffening;
   return out;
 }
 
@@ -275,6 +279,10 @@ std::optional<PresetParams> preset_from_json(const nlohmann::json& v) {
   if (v.contains("modulus")) {
     if (!v["modulus"].is_number() || !(v["modulus"].get<double>() > 0.0)) return std::nullopt;
     p.modulus = v["modulus"].get<double>();
+  }
+  if (v.contains("stiffening")) {
+    if (!v["stiffening"].is_number() || !(v["stiffening"].get<double>() >= 0.0)) return std::nullopt;
+    p.stiffening = v["stiffening"].get<double>();
   }
   return p;
 }

@@ -34,6 +34,8 @@ struct PresetParams {
   /// the calibrated force law, the stiffness derived over the local thickness) and
   /// `stiffness` is ignored; 0: by `stiffness` (N/m, the paper's springs).
   double modulus = 0.0;
+  /// With a modulus: the tissue's strain stiffening b (docs/model.md), 0: none (fat's).
+  double stiffening = 0.0;
 
   bool operator==(const PresetParams&) const = default;
 };

@@ -46,6 +46,8 @@ class InstructorPresetPanel : public QGroupBox {
   QDoubleSpinBox* thickness_box() const { return thickness_; }
   /// The tissue's modulus (kPa) or stiffness (N/m), as tissue_box says.
   QDoubleSpinBox* stiffness_box() const { return stiffness_; }
+  /// In kPa: the tissue's strain stiffening b.
+  QDoubleSpinBox* stiffening_box() const { return stiffening_; }
   /// How the tissue is given: "kpa" (Young's modulus, the calibrated force law) or "nm"
   /// (stiffness per skeleton point, the paper's springs).
   QComboBox* tissue_box() const { return tissue_; }
@@ -67,6 +69,8 @@ class InstructorPresetPanel : public QGroupBox {
   QDoubleSpinBox* length_ = nullptr;
   QDoubleSpinBox* thickness_ = nullptr;
   QDoubleSpinBox* stiffness_ = nullptr;
+  QDoubleSpinBox* stiffening_ = nullptr;
+  QLabel* stiffening_label_ = nullptr;
   QComboBox* tissue_ = nullptr;
   QLabel* stiffness_label_ = nullptr;
   QDoubleSpinBox* map_min_ = nullptr;
