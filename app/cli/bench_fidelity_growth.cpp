@@ -38,6 +38,10 @@ constexpr TwinFiles kTwins[] = {
     // twin shows is too low at a shallow press (docs/model.md, "Tumours in Pa").
     {"slab40_E5k_finger8_neohooke_incl5x.csv", "slab40_E5k_finger8_neohooke_incl1x.csv", 0.040, 0.005, 0.010, 5.0,
      mat::Indenter::Finger},
+    {"slab40_E5k_finger8_neohooke_r10d20_incl5x.csv", "slab40_E5k_finger8_neohooke_r10d20_incl1x.csv", 0.040, 0.010,
+     0.020, 5.0, mat::Indenter::Finger},
+    {"slab20_E5k_finger8_neohooke_incl5x.csv", "slab20_E5k_finger8_neohooke_incl1x.csv", 0.020, 0.005, 0.010, 5.0,
+     mat::Indenter::Finger},
 };
 
 Growth compare(const TwinFiles& t, const std::filesystem::path& reference_dir) {
