@@ -35,6 +35,14 @@ INCLUSION_R10D20 = ["--inclusion-radius", "0.010", "--inclusion-depth", "0.020"]
 # the 40 mm layer's on a 0.5 mm mesh (0.4 mm stops converging after 1 mm there).
 FINGER = ["--indenter", "sphere", "--material", "neohookean", "--nlgeom", "--allow-partial", "--steps", "23"]
 
+
+
+def twins(name, args):
+    """An inclusion at 5 x E and its 1 x twin on the same mesh: NAME_incl5x and NAME_incl1x
+    (their force ratio is the inclusion's contrast)."""
+    return {f"{name}_incl{q}x": [*args, "--inclusion-ratio", str(q)] for q in (5, 1)}
+
+
 # name: indent.py arguments (flat punch a = 7.5 mm, slab radius 60 mm)
 CASES = {
     "slab40_E5k_flat_linear": ["--thickness", "0.040", *E5K, "--max-depth", "0.016", "--steps", "16"],
@@ -50,42 +58,20 @@ CASES = {
                                         "--max-depth", "0.016", "--steps", "16"],
     "slab20_E5k_flat_neohooke_pinned": ["--thickness", "0.020", *E5K, *NEO, "--pin-edge",
                                         "--max-depth", "0.008", "--steps", "16"],
-    "slab40_E5k_flat_linear_incl5x": ["--thickness", "0.040", *E5K, *INCLUSION,
-                                      "--inclusion-ratio", "5", "--max-depth", "0.016",
-                                      "--steps", "16"],
-    "slab40_E5k_flat_linear_incl1x": ["--thickness", "0.040", *E5K, *INCLUSION,
-                                      "--inclusion-ratio", "1", "--max-depth", "0.016",
-                                      "--steps", "16"],
-    "slab40_E5k_flat_neohooke_pinned_incl5x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
-                                               *INCLUSION, "--inclusion-ratio", "5",
-                                               "--max-depth", "0.016", "--steps", "16"],
-    "slab40_E5k_flat_neohooke_pinned_incl1x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
-                                               *INCLUSION, "--inclusion-ratio", "1",
-                                               "--max-depth", "0.016", "--steps", "16"],
-    "slab40_E5k_flat_neohooke_pinned_r10d20_incl5x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
-                                                      *INCLUSION_R10D20, "--inclusion-ratio", "5",
-                                                      "--max-depth", "0.016", "--steps", "16"],
-    "slab40_E5k_flat_neohooke_pinned_r10d20_incl1x": ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
-                                                      *INCLUSION_R10D20, "--inclusion-ratio", "1",
-                                                      "--max-depth", "0.016", "--steps", "16"],
-    "slab20_E5k_flat_neohooke_pinned_incl5x": ["--thickness", "0.020", *E5K, *NEO, "--pin-edge",
-                                               *INCLUSION, "--inclusion-ratio", "5",
-                                               "--max-depth", "0.008", "--steps", "16"],
-    "slab20_E5k_flat_neohooke_pinned_incl1x": ["--thickness", "0.020", *E5K, *NEO, "--pin-edge",
-                                               *INCLUSION, "--inclusion-ratio", "1",
-                                               "--max-depth", "0.008", "--steps", "16"],
-    "slab40_E5k_finger8_neohooke_incl5x": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
-                                           *INCLUSION, "--inclusion-ratio", "5", "--max-depth", "0.008"],
-    "slab40_E5k_finger8_neohooke_incl1x": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
-                                           *INCLUSION, "--inclusion-ratio", "1", "--max-depth", "0.008"],
-    "slab40_E5k_finger8_neohooke_r10d20_incl5x": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
-                                                  *INCLUSION_R10D20, "--inclusion-ratio", "5", "--max-depth", "0.008"],
-    "slab40_E5k_finger8_neohooke_r10d20_incl1x": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
-                                                  *INCLUSION_R10D20, "--inclusion-ratio", "1", "--max-depth", "0.008"],
-    "slab20_E5k_finger8_neohooke_incl5x": ["--thickness", "0.020", *E5K, *FINGER, "--mesh-size", "0.0004",
-                                           *INCLUSION, "--inclusion-ratio", "5", "--max-depth", "0.008"],
-    "slab20_E5k_finger8_neohooke_incl1x": ["--thickness", "0.020", *E5K, *FINGER, "--mesh-size", "0.0004",
-                                           *INCLUSION, "--inclusion-ratio", "1", "--max-depth", "0.008"],
+    **twins("slab40_E5k_flat_linear", ["--thickness", "0.040", *E5K, *INCLUSION, "--max-depth", "0.016",
+                                       "--steps", "16"]),
+    **twins("slab40_E5k_flat_neohooke_pinned", ["--thickness", "0.040", *E5K, *NEO, "--pin-edge", *INCLUSION,
+                                                "--max-depth", "0.016", "--steps", "16"]),
+    **twins("slab40_E5k_flat_neohooke_pinned_r10d20", ["--thickness", "0.040", *E5K, *NEO, "--pin-edge",
+                                                       *INCLUSION_R10D20, "--max-depth", "0.016", "--steps", "16"]),
+    **twins("slab20_E5k_flat_neohooke_pinned", ["--thickness", "0.020", *E5K, *NEO, "--pin-edge", *INCLUSION,
+                                                "--max-depth", "0.008", "--steps", "16"]),
+    **twins("slab40_E5k_finger8_neohooke", ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
+                                            *INCLUSION, "--max-depth", "0.008"]),
+    **twins("slab40_E5k_finger8_neohooke_r10d20", ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
+                                                   *INCLUSION_R10D20, "--max-depth", "0.008"]),
+    **twins("slab20_E5k_finger8_neohooke", ["--thickness", "0.020", *E5K, *FINGER, "--mesh-size", "0.0004",
+                                            *INCLUSION, "--max-depth", "0.008"]),
     "slab40_E5k_finger8_neohooke": ["--thickness", "0.040", *E5K, *FINGER, "--mesh-size", "0.0005",
                                     "--max-depth", "0.0115"],
     "slab20_E5k_finger8_neohooke": ["--thickness", "0.020", *E5K, *FINGER, "--mesh-size", "0.0004",
