@@ -7,6 +7,8 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "palpa/scene/scene.hpp"
 
@@ -27,6 +29,21 @@ inline double reference_force(const std::string& name, double depth) {
   }
   ADD_FAILURE() << name << " does not reach " << depth << " m";
   return std::nan("");
+}
+
+/// The rows (depth m, force N) of the curve data/reference/`name` past its 0,0 row.
+inline std::vector<std::pair<double, double>> reference_curve(const std::string& name) {
+  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/reference/" + name);
+  std::string line;
+  std::getline(in, line);  // depth_m,force_n
+  std::vector<std::pair<double, double>> rows;
+  double d = 0.0, f = 0.0;
+  char comma = 0;
+  while (in >> d >> comma >> f) {
+    if (d > 0.0) rows.emplace_back(d, f);
+  }
+  if (rows.empty()) ADD_FAILURE() << name << ": no rows";
+  return rows;
 }
 
 /// |F| (N) of a press `depth` into the slab's centre, straight down, as the engine probes it

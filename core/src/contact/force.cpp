@@ -64,6 +64,17 @@ TumourPlace place_of(const mat::Tumour& tumour, const Vec3& foot, const Vec3& ou
   return {height, weight};
 }
 
+// max(x, floor) rounded over a band of half-width w about the floor: C1, and exact outside
+// the band (a kink in the contrast would be a kink in the force a device renders).
+double soft_floor(double x, double floor, double w) {
+  if (x >= floor + w) return x;
+  if (x <= floor - w) return floor;
+  const double t = x - floor + w;
+  return floor + t * t / (4.0 * w);
+}
+
+double soft_ceiling(double x, double ceiling, double w) { return -soft_floor(-x, -ceiling, w); }
+
 // C1 onset: 0 below 0, a parabola across [0, width], then linear with slope 1.
 double smooth_ramp(double e, double width) {
   if (e <= 0.0) return 0.0;
@@ -90,13 +101,28 @@ double stiffening_factor(double strain, double b) {
 double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model) {
   if (!(q > 1.0) || !(h > 0.0) || !(r > 0.0)) return 0.0;
   const double a = model.pad_radius;
-  // The fit's domain: at least 5 % of the layer between the inclusion and the skin or base.
-  const double depth = std::clamp(s, 0.0, 0.95 * h);
-  const double gap = std::max(s - r, 0.05 * h);
+  // The fit's domain: at least 5 % of the layer between the inclusion and the skin or base,
+  // reached smoothly (a band of 0.5 % of the layer) so that a deep press meets no kink.
+  const double band = 0.005 * h;
+  const double depth = soft_ceiling(std::max(s, 0.0), 0.95 * h, band);
+  const double gap = soft_floor(s - r, 0.05 * h, band);
   const double along_axis = 1.0 + (depth / (model.depth_knee * a)) * (depth / (model.depth_knee * a));
   return model.a_scale * (q - 1.0) / (q + model.ratio_knee) * std::pow(r / a, model.size_power) *
          std::pow(along_axis, -model.depth_power) * std::pow((h - depth) / h, model.base_power) *
          std::pow(h / a, model.layer_power) * std::pow(gap / a, -model.gap_power);
+}
+
+double finger_tumour_contrast(double r, double s, double q, double h, double d, double R,
+                              const TumourContrast& model) {
+  const auto& f = model.finger;
+  const double a = model.pad_radius;
+  const double c = sphere_contact_radius(d, R);
+  if (!(c > 0.0)) return 0.0;
+  TumourContrast as_pad = model;
+  as_pad.pad_radius = f.radius_scale * a * std::pow(c / a, f.radius_power);
+  as_pad.layer_power = f.layer_power;
+  const double thinned = f.shift * d;
+  return f.scale * tumour_contrast(r, s - thinned, q, h - thinned, as_pad);
 }
 
 double compressed_share(double strain) { return 1.0 - 0.5 * std::tanh(2.0 * std::max(strain, 0.0)); }
@@ -124,10 +150,16 @@ double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double no
   const double weight = contrast_lateral_weight(lateral, tumour.radius, below_skin, options.contrast);
   if (weight <= 0.0) return 0.0;
   const double ratio = tumour.modulus_ratio * std::exp((tumour.stiffening - options.stiffening) * strain);
+  const double thickness = 2.0 * contact.radius;
+  if (options.finger.on) {
+    return weight * normal *
+           finger_tumour_contrast(tumour.radius, below_skin, ratio, thickness, contact.depth,
+                                  options.finger.law.radius, options.contrast);
+  }
   // The tissue over and under the tumour is thinner by the press: the contrast grows.
   const double left = options.contrast.compressed ? compressed_share(strain) : 1.0;
   return weight * normal *
-         tumour_contrast(tumour.radius, left * below_skin, ratio, left * 2.0 * contact.radius, options.contrast);
+         tumour_contrast(tumour.radius, left * below_skin, ratio, left * thickness, options.contrast);
 }
 
 }  // namespace

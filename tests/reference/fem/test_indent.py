@@ -309,6 +309,30 @@ class ContrastFitTest(unittest.TestCase):
                         fit_contrast.log_extra(theta, 0.005, 0.010, 10.0, 0.04))
 
 
+@unittest.skipUnless(HAVE_NUMPY and HAVE_SCIPY, "numpy or scipy missing")
+class FingerContrastFitTest(unittest.TestCase):
+    """tools/fem/fit_finger_contrast.py: the pad's contrast model read under the rounded finger."""
+
+    # contact::TumourContrast::Finger (core/include/palpa/contact/force.hpp): alpha, n, beta, kappa, e_f.
+    SHIPPED = (0.8791, 0.7054, 0.5496, 0.3214, -0.4256)
+
+    def test_the_fit_gives_the_shipped_numbers_and_every_press_within_the_mark(self):
+        import fit_finger_contrast as fit
+        rows = fit.load()
+        self.assertEqual(len(rows), 49)
+        pad = fit.pad_parameters()
+        theta = fit.fit(pad, rows)
+        for fitted, shipped in zip(theta, self.SHIPPED):
+            self.assertAlmostEqual(fitted, shipped, delta=2e-3 * abs(shipped))
+        self.assertLess(max(abs(e) for e in fit.errors(self.SHIPPED, pad, rows)), 1.0)
+
+    def test_sneddons_contact_radius(self):
+        import fit_finger_contrast as fit
+        # d = (c / 2) ln((R + c) / (R - c)) by hand at c = R / 2: d = R ln(3) / 4.
+        self.assertAlmostEqual(fit.contact_radius(0.008 * math.log(3.0) / 4.0), 0.004, places=9)
+        self.assertAlmostEqual(fit.contact_radius(0.0), 0.0, places=12)
+
+
 @unittest.skipUnless(HAVE_NUMPY, "numpy missing")
 class CommandLineTest(unittest.TestCase):
 

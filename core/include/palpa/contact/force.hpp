@@ -27,6 +27,8 @@ struct TumourFeel {
 ///     C - 1 = A (q - 1) / (q + g) (r / a)^m (1 + (s / (k a))^2)^(-p) ((h - s) / h)^d
 ///             (h / a)^e (max(s - r, h / 20) / a)^(-c)
 ///
+/// (the clamps of s to 0.95 h and of s - r to h / 20 rounded C1 over 0.5 % of h)
+///
 /// fitted to the on-axis FEM sweeps of data/reference, layers of 20, 30 and 40 mm
 /// (tools/fem/fit_contrast.py: within 14.2 % of C - 1 on 72 inclusions, 19.8 % on a layer
 /// left out of the fit). Beside the pad's axis the extra force fades C1 with the finger's
@@ -50,6 +52,19 @@ struct TumourContrast {
   /// the neo-Hookean FEM twins' growth with the press within 2 %; false: the small-strain
   /// limit, the linear sweeps' contrast at every press.
   bool compressed = true;
+  /// Under the rounded finger (ForceOptions::finger) the model is read with the pad radius
+  /// the finger's contact acts like, a_f = alpha a (c / a)^n for Sneddon's contact radius c
+  /// at the press d, the layer power e_f for e, the tissue over and under the tumour
+  /// shortened by kappa d, and C - 1 scaled by beta; fitted to the three neo-Hookean finger
+  /// twins of data/reference (tools/fem/fit_finger_contrast.py: every press within 0.87 of
+  /// the bench's mark, max(0.2 (C - 1), 0.02)).
+  struct Finger {
+    double radius_scale = 0.8791;   ///< alpha
+    double radius_power = 0.7054;   ///< n: a small contact acts wider than it is
+    double scale = 0.5496;          ///< beta
+    double shift = 0.3214;          ///< kappa: the share of the press that thins the tissue over the tumour
+    double layer_power = -0.4256;   ///< e_f: a small contact feels the layer's thickness less than the pad
+  } finger{};
 };
 
 /// w: the share of a tumour's on-axis contrast felt with the finger `lateral` (m) beside
@@ -67,6 +82,11 @@ double stiffening_factor(double strain, double b);
 /// local thickness h, on the pad's axis (q <= 1 or a degenerate layer: 0), in the small-strain
 /// limit: the linear FEM's contrast.
 double tumour_contrast(double r, double s, double q, double h, const TumourContrast& model = {});
+
+/// C - 1 for the same tumour under the rounded finger of radius R pressed d deep (its
+/// contact radius from sphere_contact_radius; 0 before contact): TumourContrast::Finger.
+double finger_tumour_contrast(double r, double s, double q, double h, double d, double R,
+                              const TumourContrast& model = {});
 
 /// The share 1 - eps' of the layer left under a press at nominal strain eps, as the contrast
 /// model sees it: eps' = tanh(2 eps) / 2, about eps up to a fifth of the layer and never more
