@@ -15,14 +15,11 @@
 namespace palpa::cli::fidelity {
 namespace {
 
-constexpr double kSlabWidth = 0.12;      // m: the 60 mm-radius disc stands in for a 120 mm slab
-constexpr double kLayerModulus = 5000.0; // Pa: every sweep's layer
 // m. The linear sweeps stand for the small-strain limit, so the calibrated law is read there
 // too (TumourContrast::compressed off: the same contrast at every press); its growth with
 // the press is checked against the neo-Hookean twins (bench_fidelity_growth.hpp).
 constexpr double kCalibratedPress = 0.002;
 constexpr double kPaperPress = 0.004;       // m: where the paper's tumour spring has engaged
-constexpr double kOnsetContrast = 1.10;     // the contrast a trainee is taken to notice
 constexpr double kOnsetStep = 0.00025;      // m: the press depths scanned for the onset
 constexpr double kOnsetReach = 0.40;        // share of the thickness scanned
 constexpr double kOnsetTolerance = 0.002;   // m
@@ -68,15 +65,20 @@ std::vector<std::vector<double>> read_rows(const std::filesystem::path& path, st
   return rows;
 }
 
-io::CaseFile slab(double thickness, mat::ForceModel law) {
-  return author::make_modulus_slab(kSlabWidth, thickness, kLayerModulus, law);
+io::CaseFile slab(double thickness, mat::ForceModel law, mat::Indenter indenter) {
+  io::CaseFile file = author::make_modulus_slab(kSlabWidth, thickness, kLayerModulus, law);
+  file.indenter = indenter;
+  return file;
 }
 
 }  // namespace
 
+scene::Scene plain_slab(double thickness, mat::ForceModel law, mat::Indenter indenter) {
+  return scene::Scene::build(slab(thickness, law, indenter), "slab");
+}
+
 scene::Scene with_tumour(const Inclusion& r, mat::ForceModel law, double stiffness) {
-  io::CaseFile file = slab(r.thickness, law);
-  file.indenter = r.indenter;
+  io::CaseFile file = slab(r.thickness, law, r.indenter);
   const auto plain = scene::Scene::build(file, "slab");
   std::array<double, 3> top{};
   plain.body(0).body.top().evaluate(0.5, 0.5, top);
@@ -111,22 +113,20 @@ std::vector<std::array<double, 2>> read_force_curve(const std::filesystem::path&
   return rows;
 }
 
-namespace {
-
-// First press depth with contrast >= 1.10, scanned up to 40 % of the thickness; -1 if none.
-double onset(const scene::Scene& tumour, const scene::Scene& plain, double thickness,
-             const scene::ProbeOptions& options = {}) {
-  for (double d = kOnsetStep; d <= kOnsetReach * thickness + 1e-12; d += kOnsetStep) {
+double onset(const scene::Scene& tumour, const scene::Scene& plain, double reach, const scene::ProbeOptions& options) {
+  for (double d = kOnsetStep; d <= reach + 1e-12; d += kOnsetStep) {
     if (centre_force(tumour, d, options) >= kOnsetContrast * centre_force(plain, d, options)) return d;
   }
   return -1.0;
 }
 
+namespace {
+
 // Fills in Palpa's contrast (and, when `onsets`, the onset depths) of each row.
 void evaluate(std::vector<Inclusion>& rows, bool onsets) {
   for (auto& r : rows) {
-    const auto calibrated_plain = scene::Scene::build(slab(r.thickness, mat::ForceModel::Calibrated), "slab");
-    const auto paper_plain = scene::Scene::build(slab(r.thickness, mat::ForceModel::Paper), "slab");
+    const auto calibrated_plain = plain_slab(r.thickness, mat::ForceModel::Calibrated, r.indenter);
+    const auto paper_plain = plain_slab(r.thickness, mat::ForceModel::Paper, r.indenter);
     const auto calibrated = with_tumour(r, mat::ForceModel::Calibrated, 0.0);
     // The half-space rule of docs/case-authoring.md for a tumour's spring: k_t = 0.02 m x E_t.
     const auto paper = with_tumour(r, mat::ForceModel::Paper, 0.02 * r.ratio * kLayerModulus);
@@ -137,8 +137,8 @@ void evaluate(std::vector<Inclusion>& rows, bool onsets) {
     r.paper = centre_force(paper, kPaperPress) / centre_force(paper_plain, kPaperPress);
     if (!onsets) continue;
     r.fem_onset = r.fem >= kOnsetContrast ? 0.0 : -1.0;  // linear: the same contrast at every press
-    r.calibrated_onset = onset(calibrated, calibrated_plain, r.thickness, small_strain);
-    r.paper_onset = onset(paper, paper_plain, r.thickness);
+    r.calibrated_onset = onset(calibrated, calibrated_plain, kOnsetReach * r.thickness, small_strain);
+    r.paper_onset = onset(paper, paper_plain, kOnsetReach * r.thickness);
   }
 }
 

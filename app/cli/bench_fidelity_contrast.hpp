@@ -11,6 +11,10 @@
 
 namespace palpa::cli::fidelity {
 
+inline constexpr double kSlabWidth = 0.12;       ///< m: the 60 mm-radius disc stands in for a 120 mm slab
+inline constexpr double kLayerModulus = 5000.0;  ///< Pa: every reference layer's
+inline constexpr double kOnsetContrast = 1.10;   ///< the contrast a trainee is taken to notice
+
 /// |F| (N) of a press `depth` straight down into the middle of a slab's top, as the engine
 /// probes (by default its default options: shear springs requested, followed where the law
 /// has them).
@@ -36,6 +40,14 @@ struct Inclusion {
 /// The 120 mm slab of 5 kPa of `inclusion`'s layer with its tumour: in Pa, or as a spring of
 /// `stiffness` N/m when that is above 0; `offset` beside the slab's centre, along x.
 scene::Scene with_tumour(const Inclusion& inclusion, mat::ForceModel law, double stiffness);
+
+/// The 120 mm slab of 5 kPa and `thickness` (m) without a tumour, under `law`, pressed by `indenter`.
+scene::Scene plain_slab(double thickness, mat::ForceModel law, mat::Indenter indenter = mat::Indenter::Pad);
+
+/// The first press depth (m, in steps of 0.25 mm up to `reach`) at which `tumour` pushes back
+/// kOnsetContrast times as hard as `plain`, as the engine probes with `options`; -1 if none.
+double onset(const scene::Scene& tumour, const scene::Scene& plain, double reach,
+             const scene::ProbeOptions& options = {});
 
 /// The contrast mark: within 20 % of C - 1, or 0.02 where C - 1 is small.
 bool contrast_met(double model, double fem);

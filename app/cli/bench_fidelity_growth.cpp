@@ -9,17 +9,10 @@
 #include <string>
 
 #include "bench_fidelity_contrast.hpp"
-#include "palpa/author/presets.hpp"
-#include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 
 namespace palpa::cli::fidelity {
 namespace {
-
-constexpr double kSlabWidth = 0.12;      // m
-constexpr double kLayerModulus = 5000.0; // Pa
-constexpr double kOnsetContrast = 1.10;
-constexpr double kOnsetStep = 0.00025;   // m
 
 struct TwinFiles {
   const char* stiff;  // the 5x inclusion
@@ -34,8 +27,8 @@ constexpr TwinFiles kTwins[] = {
      0.010, 0.020, 5.0},
     {"slab20_E5k_flat_neohooke_pinned_incl5x.csv", "slab20_E5k_flat_neohooke_pinned_incl1x.csv", 0.020, 0.005, 0.010,
      5.0},
-    // The rounded finger's contrast: the pad's model is applied to its force, which the
-    // twin shows is too low at a shallow press (docs/model.md, "Tumours in Pa").
+    // The rounded finger's contrast: the pad's model read as the finger's contact acts
+    // (contact::TumourContrast::Finger, docs/model.md, "A tumour under the rounded finger").
     {"slab40_E5k_finger8_neohooke_incl5x.csv", "slab40_E5k_finger8_neohooke_incl1x.csv", 0.040, 0.005, 0.010, 5.0,
      mat::Indenter::Finger},
     {"slab40_E5k_finger8_neohooke_r10d20_incl5x.csv", "slab40_E5k_finger8_neohooke_r10d20_incl1x.csv", 0.040, 0.010,
@@ -50,10 +43,7 @@ Growth compare(const TwinFiles& t, const std::filesystem::path& reference_dir) {
   Inclusion inclusion{t.thickness, t.radius, t.depth, t.ratio};
   inclusion.indenter = t.indenter;
   const auto with = with_tumour(inclusion, mat::ForceModel::Calibrated, 0.0);
-  io::CaseFile plain_file =
-      author::make_modulus_slab(kSlabWidth, t.thickness, kLayerModulus, mat::ForceModel::Calibrated);
-  plain_file.indenter = t.indenter;
-  const auto without = scene::Scene::build(plain_file, "slab");
+  const auto without = plain_slab(t.thickness, mat::ForceModel::Calibrated, t.indenter);
   Growth g;
   g.finger = t.indenter == mat::Indenter::Finger;
   const std::size_t n = std::min(stiff.size(), plain.size());
@@ -68,13 +58,7 @@ Growth compare(const TwinFiles& t, const std::filesystem::path& reference_dir) {
     if (g.fem_onset < 0.0 && r.fem >= kOnsetContrast) g.fem_onset = d;
     g.rows.push_back(r);
   }
-  const double reach = g.rows.back().press;
-  for (double d = kOnsetStep; d <= reach + 1e-12; d += kOnsetStep) {
-    if (centre_force(with, d) >= kOnsetContrast * centre_force(without, d)) {
-      g.calibrated_onset = d;
-      break;
-    }
-  }
+  g.calibrated_onset = onset(with, without, g.rows.back().press);
   return g;
 }
 

@@ -19,7 +19,7 @@ struct GrowthRow {
 struct Growth {
   std::vector<GrowthRow> rows;
   double fem_onset = -1.0, calibrated_onset = -1.0;
-  bool finger = false;  // pressed by the rounded finger: shown, not yet held to the marks
+  bool finger = false;  // pressed by the rounded finger, not the flat pad
 };
 
 /// Every committed twin pair. Throws std::runtime_error naming a file it cannot read.
