@@ -80,6 +80,22 @@ void BM_ProbeWarm(benchmark::State& state) {
 }
 BENCHMARK(BM_ProbeWarm)->Arg(1)->Arg(0);
 
+// The same path on the default case pressed by the rounded finger (contact radius, the
+// finger's force and its reading of the tumour's contrast), shear on as the engine asks.
+void BM_ProbeWarmFinger(benchmark::State& state) {
+  static const auto scene = [] {
+    auto file = palpa::io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json");
+    file.indenter = palpa::mat::Indenter::Finger;
+    return palpa::scene::Scene::build(file, "default.json");
+  }();
+  auto probe_state = scene.make_state();
+  const auto path = palpation_path(4096);
+  std::size_t k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(scene.probe(path[k++ & 4095], probe_state, {}));
+  state.SetLabel("rounded finger, tumour in Pa");
+}
+BENCHMARK(BM_ProbeWarmFinger);
+
 // One haptic tick with dynamics: probe (foot point, depth, force) on the rest body, press
 // the drawn body onto the probe, advance its springs by 1 ms. Arg: grid points per side
 // of a breast-like dome (0: the default case itself, 9 x 11).

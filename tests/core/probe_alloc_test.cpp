@@ -23,8 +23,17 @@
 namespace palpa::scene {
 namespace {
 
-TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
-  const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
+// The default case (tissue and tumour in Pa) pressed by the flat pad or the rounded finger.
+Scene default_scene(mat::Indenter indenter) {
+  auto file = io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json");
+  file.indenter = indenter;
+  return Scene::build(file, "default.json");
+}
+
+class QueryAllocation : public ::testing::TestWithParam<mat::Indenter> {};
+
+TEST_P(QueryAllocation, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
+  const auto scene = default_scene(GetParam());
   ASSERT_FALSE(scene.body(0).tumours.empty());
   auto state = scene.make_state();
   ProbeOptions fast;
@@ -48,6 +57,9 @@ TEST(ProbeRealTime, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
   EXPECT_GT(palpa::test::allocations(), control);
   EXPECT_EQ(fresh.warm.size(), scene.size());
 }
+
+INSTANTIATE_TEST_SUITE_P(ProbeRealTime, QueryAllocation, ::testing::Values(mat::Indenter::Pad, mat::Indenter::Finger),
+                         [](const auto& param_info) { return param_info.param == mat::Indenter::Pad ? "Pad" : "Finger"; });
 
 TEST(ProbeRealTime, PressAndSpringStepsAllocateNothingInEitherScheme) {
   const auto scene = Scene::build(io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json"), "default.json");
