@@ -51,6 +51,33 @@ TEST(AuthorDraft, NewDraftIsAValidBreastAndClean) {
   EXPECT_EQ(draft.preset()->preset, Preset::Breast);
 }
 
+TEST(AuthorDraft, ACaseNotMadeFromAPresetOffersItsOwnSizeAndTissue) {
+  // The bundled default case (no "preset"): 140 x 160 mm of medial points, by hand from
+  // data/cases/make_cases.py; fibroglandular tissue, 3.24 kPa, stiffening 3.593.
+  const auto draft = CaseDraft::load(PALPA_SOURCE_DIR "/data/cases/default.json");
+  ASSERT_FALSE(draft.preset().has_value());
+  const auto p = draft.preset_or_nearest();
+  EXPECT_EQ(p.preset, Preset::Breast);
+  EXPECT_NEAR(p.width, 0.14, 1e-9);
+  EXPECT_NEAR(p.length, 0.16, 1e-9);
+  double largest = 0.0;
+  for (const auto& r : draft.document()["bodies"][0]["radius"]) largest = std::max(largest, r.get<double>());
+  EXPECT_NEAR(p.thickness, 2.0 * largest, 1e-12);
+  EXPECT_NEAR(p.modulus, 3240.0, 1e-9);
+  EXPECT_NEAR(p.stiffening, 3.593, 1e-9);
+  // A case in N/m offers its mean stiffness; a preset case its own parameters.
+  auto doc = draft.document();
+  auto& body = doc["bodies"][0];
+  body.erase("modulus");
+  body.erase("stiffening");
+  body["stiffness"] = std::vector<double>(body["radius"].size(), 150.0);
+  const auto springs = CaseDraft::from_document(doc, "springs.json").preset_or_nearest();
+  EXPECT_EQ(springs.modulus, 0.0);
+  EXPECT_NEAR(springs.stiffness, 150.0, 1e-9);
+  CaseDraft made;
+  EXPECT_EQ(made.preset_or_nearest(), *made.preset());
+}
+
 TEST(AuthorDraft, UndoRestoresTheExactDocumentAndRedoReapplies) {
   CaseDraft draft;
   const nlohmann::json before = draft.document();

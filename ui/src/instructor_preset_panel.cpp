@@ -102,7 +102,7 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_params(); });
   }
   connect(import_, &QPushButton::clicked, this, &InstructorPresetPanel::import_requested);
-  show_params(std::nullopt);
+  show_params(author::preset_defaults_in_kpa(author::Preset::Breast), true);
 }
 
 void InstructorPresetPanel::set_limits(author::Preset preset) {
@@ -144,11 +144,10 @@ void InstructorPresetPanel::show_tissue(const author::PresetParams& p) {
   stiffening_label_->setVisible(kpa);
 }
 
-void InstructorPresetPanel::show_params(const std::optional<author::PresetParams>& params) {
+void InstructorPresetPanel::show_params(const author::PresetParams& p, bool made_from_preset) {
   updating_ = true;
   const QSignalBlocker blockers[] = {QSignalBlocker(preset_),    QSignalBlocker(width_),     QSignalBlocker(length_),
                                      QSignalBlocker(thickness_), QSignalBlocker(stiffness_), QSignalBlocker(stiffening_)};
-  const auto p = params ? *params : author::preset_defaults_in_kpa(author::Preset::Breast);
   for (int k = 0; k < 4; ++k) {
     if (kPresets[k] == p.preset) preset_->setCurrentIndex(k);
   }
@@ -159,7 +158,9 @@ void InstructorPresetPanel::show_params(const std::optional<author::PresetParams
   show_tissue(p);
   rows_ = p.rows;
   cols_ = p.cols;
-  note_->setText(params ? QString() : tr("This case was not made from a preset: changing these replaces its bodies."));
+  note_->setText(made_from_preset ? QString()
+                                  : tr("This case was not made from a preset: these are its first body's size and "
+                                       "tissue, and changing them replaces its bodies."));
   updating_ = false;
 }
 

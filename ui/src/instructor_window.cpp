@@ -247,7 +247,7 @@ void InstructorWindow::refresh() {
   // A title being typed (not committed yet) stays; otherwise the field shows the draft's.
   const QString title = QString::fromStdString(draft_.title());
   if (!title_->isModified() && title_->text() != title) title_->setText(title);
-  preset_panel_->show_params(draft_.preset());
+  preset_panel_->show_params(draft_.preset_or_nearest(), draft_.preset().has_value());
   preset_panel_->set_map_in_kpa(draft_.tissue_in_pa());
   tumour_panel_->show_draft(draft_);
 

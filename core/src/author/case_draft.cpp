@@ -365,6 +365,54 @@ std::optional<PresetParams> CaseDraft::preset() const {
   return preset_from_json(doc_["preset"]);
 }
 
+namespace {
+
+// The mean of a body's per-point numbers under `key`, or 0 when it has none.
+double mean_of(const json& body, const char* key) {
+  if (!body.contains(key) || !body[key].is_array() || body[key].empty()) return 0.0;
+  double sum = 0.0;
+  for (const auto& x : body[key]) sum += x.is_number() ? x.get<double>() : 0.0;
+  return sum / static_cast<double>(body[key].size());
+}
+
+}  // namespace
+
+PresetParams CaseDraft::preset_or_nearest() const {
+  if (auto made = preset()) return *made;
+  PresetParams p = preset_defaults_in_kpa(Preset::Breast);
+  if (!doc_.is_object() || !doc_.contains("bodies") || !doc_["bodies"].is_array() || doc_["bodies"].empty()) return p;
+  const json& body = doc_["bodies"][0];
+  if (!body.is_object()) return p;
+  const auto limits = preset_limits(Preset::Breast);
+  const auto within = [](double x, const double range[2]) { return std::clamp(x, range[0], range[1]); };
+  if (body.contains("medial") && body["medial"].is_array() && !body["medial"].empty()) {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (const auto& m : body["medial"]) {
+      if (!m.is_array() || m.size() < 2 || !m[0].is_number() || !m[1].is_number()) continue;
+      for (int k = 0; k < 2; ++k) {
+        lo[k] = std::min(lo[k], m[static_cast<std::size_t>(k)].get<double>());
+        hi[k] = std::max(hi[k], m[static_cast<std::size_t>(k)].get<double>());
+      }
+    }
+    if (hi[0] > lo[0]) p.width = within(hi[0] - lo[0], limits.width);
+    if (hi[1] > lo[1]) p.length = within(hi[1] - lo[1], limits.length);
+  }
+  if (body.contains("radius") && body["radius"].is_array()) {
+    double largest = 0.0;
+    for (const auto& r : body["radius"]) largest = std::max(largest, r.is_number() ? r.get<double>() : 0.0);
+    if (largest > 0.0) p.thickness = within(2.0 * largest, limits.thickness);
+  }
+  if (const double e = mean_of(body, "modulus"); e > 0.0) {
+    p.modulus = within(e, limits.modulus);
+    p.stiffening = body.contains("stiffening") && body["stiffening"].is_number() ? body["stiffening"].get<double>() : 0.0;
+  } else if (const double k = mean_of(body, "stiffness"); k > 0.0) {
+    p.modulus = 0.0;
+    p.stiffening = 0.0;
+    p.stiffness = within(k, limits.stiffness);
+  }
+  return p;
+}
+
 bool CaseDraft::tissue_in_pa() const {
   if (!doc_.is_object() || !doc_.contains("bodies") || !doc_["bodies"].is_array() || doc_["bodies"].empty()) {
     return false;

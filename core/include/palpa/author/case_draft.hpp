@@ -110,6 +110,11 @@ class CaseDraft {
   std::string title() const;
   /// The preset the bodies were made from, if the document records one.
   std::optional<PresetParams> preset() const;
+  /// What the preset controls start from: the preset the bodies were made from or, for a
+  /// case not made from one, the breast preset sized and filled like its first body (the
+  /// span of its medial points in x and y, twice its largest radius, the mean of its
+  /// modulus or stiffness and its stiffening), each clamped into the breast preset's limits.
+  PresetParams preset_or_nearest() const;
   std::size_t tumour_count() const;
   /// Every body gives its tissue by its modulus ("modulus", Pa): the editor speaks kPa.
   /// False for a case without bodies.

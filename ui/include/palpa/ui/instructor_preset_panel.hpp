@@ -21,9 +21,10 @@ class InstructorPresetPanel : public QGroupBox {
  public:
   explicit InstructorPresetPanel(QWidget* parent = nullptr);
 
-  /// Shows `params` (nothing: the case was not made from a preset; the controls show the
-  /// breast's defaults and changing them replaces its bodies). Emits nothing.
-  void show_params(const std::optional<author::PresetParams>& params);
+  /// Shows `params`; when the case was not `made_from_preset`, they are the nearest preset's
+  /// (CaseDraft::preset_or_nearest) and a note says that changing them replaces its bodies.
+  /// Emits nothing.
+  void show_params(const author::PresetParams& params, bool made_from_preset);
   /// The parameters the controls show (SI).
   author::PresetParams params() const;
   /// The range of an imported map, black -> min, white -> max, in the unit shown: a
