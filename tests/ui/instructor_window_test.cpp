@@ -17,6 +17,8 @@
 #include <QMessageBox>
 #include <QProcess>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSurfaceFormat>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -394,6 +396,32 @@ class InstructorWindowTest : public QObject {
   // typed in, which makes the tissue "Custom"), the overlay's legend
   // reads the tissue's 5 kPa, and a grayscale map sets the modulus between the panel's
   // black and white kPa. Nothing of it turns the case into N/m.
+  // The bundled default case was not made from a preset: the body controls start from its
+  // own tissue (3.24 kPa, stiffening 3.59), not the preset's; and at 1280 x 800 every
+  // control of the side panel lies inside it (none cut off at the right).
+  void aCaseNotFromAPresetShowsItsOwnTissueAndThePanelFits() {
+    InstructorWindow window{palpa::author::CaseDraft()};
+    window.resize(1280, 800);
+    show(window);
+    QVERIFY2(window.open_case(QString::fromStdString(kDefaultCase)), qPrintable(window.message()));
+    QTest::qWait(50);
+    auto* panel = window.preset_panel();
+    QCOMPARE(panel->stiffness_box()->value(), 3.24);
+    QCOMPARE(panel->stiffening_box()->value(), 3.59);
+    QCOMPARE(panel->width_box()->value(), 140.0);
+    auto* scroll = qobject_cast<QScrollArea*>(panel->parentWidget()->parentWidget()->parentWidget());
+    QVERIFY(scroll != nullptr);
+    const int right = scroll->viewport()->width();
+    for (auto* w : scroll->widget()->findChildren<QWidget*>()) {
+      if (!w->isVisible() || qobject_cast<QScrollBar*>(w) || !w->parentWidget()->isVisible()) continue;
+      const int edge = w->mapTo(scroll->viewport(), QPoint(w->width(), 0)).x();
+      QVERIFY2(edge <= right, qPrintable(QString("%1 %2 ends at %3, the panel at %4")
+                                             .arg(w->metaObject()->className(), w->objectName())
+                                             .arg(edge)
+                                             .arg(right)));
+    }
+  }
+
   void aCaseInKpaIsEditedInKpa() {
     QTemporaryDir dir;
     auto doc = palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab)).document();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <initializer_list>
 
+#include <QAbstractItemView>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -58,7 +59,10 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // The numbers and "yes" take what their headers need; the material gets the rest (elided,
+  // its tooltip has the whole).
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::Stretch);
   table_->setMinimumHeight(110);
   layout->addWidget(table_, 1);
 
@@ -75,11 +79,16 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   // In kPa: a tissue from the literature fills modulus and stiffening; editing either
   // makes it "Custom".
   material_ = new QComboBox(this);
+  // The names are long ("Invasive ductal carcinoma, high grade"): the box fits the panel and
+  // elides, its list opens as wide as the names.
+  material_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  material_->setMinimumContentsLength(14);
   material_->addItem(tr("Custom"), QString());
   for (const auto& m : mat::tissue_materials()) {
     if (m.tumour) material_->addItem(QString::fromUtf8(m.name.data(), static_cast<int>(m.name.size())),
                                      QString::fromUtf8(m.key.data(), static_cast<int>(m.key.size())));
   }
+  material_->view()->setMinimumWidth(material_->view()->sizeHintForColumn(0) + 24);
   material_->setToolTip(tr("A tumour tissue from the literature: its small-strain modulus (Samani et al. 2007) "
                            "and how fast it stiffens when compressed (Krouskop et al. 1998)"));
   tissue_label_ = new QLabel(tr("Tissue"), this);
