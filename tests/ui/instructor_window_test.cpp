@@ -6,6 +6,7 @@
 // values typed but not committed (Save, Undo), Save As next to an existing file, Undo
 // keys from side-panel editors, the wheel over unfocused boxes, a one-field tumour edit,
 // the owner's device for "Try it", closing the window finishes the Try-it sessions.
+#include <QAbstractSpinBox>
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
@@ -101,6 +102,14 @@ QImage ramp_along_x() {
     }
   }
   return ramp;
+}
+
+// Types `text` into a spin box as a person does: focus, select all, type, Return.
+void type_into(QAbstractSpinBox* box, const QString& text) {
+  box->setFocus();
+  QTest::keyClick(box, Qt::Key_A, Qt::ControlModifier);
+  QTest::keyClicks(box, text);
+  QTest::keyClick(box, Qt::Key_Return);
 }
 
 void write_text(const QString& path, const std::string& text) { std::ofstream(path.toStdString()) << text; }
@@ -347,10 +356,7 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 7000.0);
     QCOMPARE(panel->stiffness_box()->value(), 7.0);
     auto* modulus = panel->stiffness_box();
-    modulus->setFocus();
-    QTest::keyClick(modulus, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(modulus, "12.5");
-    QTest::keyClick(modulus, Qt::Key_Return);
+    type_into(modulus, "12.5");
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
     QCOMPARE(window.draft().preset()->modulus, 12500.0);
     QVERIFY(window.draft().validate().empty());
@@ -358,10 +364,7 @@ class InstructorWindowTest : public QObject {
     auto* stiffening = panel->stiffening_box();
     QVERIFY(stiffening->isVisible());
     QCOMPARE(stiffening->value(), 0.0);
-    stiffening->setFocus();
-    QTest::keyClick(stiffening, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(stiffening, "3.59");
-    QTest::keyClick(stiffening, Qt::Key_Return);
+    type_into(stiffening, "3.59");
     QCOMPARE(window.draft().document()["bodies"][0]["stiffening"].get<double>(), 3.59);
     QCOMPARE(window.draft().preset()->stiffening, 3.59);
     QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 12500.0);
@@ -463,16 +466,10 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(material->value(), 6.48);
 
     // 35 typed into the selected tumour's modulus box, then a stiffening of 3.
-    material->setFocus();
-    QTest::keyClick(material, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(material, "35");
-    QTest::keyClick(material, Qt::Key_Return);
+    type_into(material, "35");
     QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 35e3);
     QCOMPARE(tissue->currentData().toString(), QString());  // "Custom"
-    stiffening->setFocus();
-    QTest::keyClick(stiffening, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(stiffening, "3");
-    QTest::keyClick(stiffening, Qt::Key_Return);
+    type_into(stiffening, "3");
     QCOMPARE(window.draft().document()["tumors"][0]["stiffening"].get<double>(), 3.0);
     QCOMPARE(window.draft().document()["tumors"][0]["modulus"].get<double>(), 35e3);
     QVERIFY(window.draft().validate().empty());
