@@ -13,6 +13,7 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
+#include <QElapsedTimer>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
@@ -145,6 +146,28 @@ class TraineeWindowTest : public QObject {
     QVERIFY(wait_for([&] { return window.exercise().loop_stats().ticks() >= 100; }));
     QVERIFY(wait_for([&] { return window.frame_rate() > 0.0; }, 3000));
     qInfo("frame rate under this display: %.1f fps (timer at 60 Hz)", window.frame_rate());  // for the record, not a test
+  }
+
+  // A view nothing changes in is redrawn only a few times a second (a software renderer
+  // would otherwise spend a core on identical frames); the finger moving over the body
+  // brings the frames back.
+  void anUnchangedViewIsNotRedrawnEveryFrame() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("idle.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::qWait(2300);  // two whole seconds of frame counting with no input
+    QVERIFY2(window.frame_rate() <= 6.0, qPrintable(QString::number(window.frame_rate())));
+    auto* view = window.view();
+    const QPoint centre = window.to_view(top_over_tumour(window.exercise()));
+    QElapsedTimer clock;
+    clock.start();
+    for (int k = 0; clock.elapsed() < 2300; ++k) {
+      move_pointer(view->input(), centre + QPoint((k % 40) - 20, ((k / 40) % 2) * 10));
+      QTest::qWait(15);
+    }
+    qInfo("frames drawn: moving %.1f per second", window.frame_rate());
+    QVERIFY2(window.frame_rate() >= 8.0, qPrintable(QString::number(window.frame_rate())));
   }
 
   void mousePalpationPressesTheTissue() {

@@ -136,6 +136,7 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
 
   status_loop_ = new QLabel(this);
   status_fps_ = new QLabel(this);
+  status_fps_->setToolTip(tr("Frames drawn in the last second: a view that does not change is redrawn only four times a second"));
   statusBar()->addWidget(status_loop_, 1);
   statusBar()->addPermanentWidget(status_fps_);
 
@@ -234,6 +235,7 @@ void TraineeWindow::apply_pressure() {
 }
 
 void TraineeWindow::place_mark() {
+  request_render();
   if (!exercise_->started() || exercise_->finished()) return;
   const auto mark = exercise_->place_mark();
   // Drawn on the surface where the finger was, so it stays visible when the tissue springs back.
@@ -247,6 +249,7 @@ void TraineeWindow::place_mark() {
 }
 
 void TraineeWindow::remove_selected_mark() {
+  request_render();
   const auto selected = marks_list_->selectedItems();
   for (auto* item : selected) {
     const auto id = static_cast<std::int64_t>(item->data(Qt::UserRole).toLongLong());
@@ -279,6 +282,7 @@ void TraineeWindow::finish() {
 }
 
 void TraineeWindow::reveal(const score::Score& score) {
+  request_render();
   surfaces_->set_opacity(0.35);
   for (const auto& t : score.tumours) {
     const trainer::Vec3 c(t.center[0], t.center[1], t.center[2]);
@@ -326,6 +330,7 @@ std::size_t TraineeWindow::cull_bodies() {
 }
 
 void TraineeWindow::look_at_body(std::size_t body) {
+  request_render();
   const auto& box = exercise_->scene().body(body).bounds;
   double bounds[6] = {box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z()};
   renderer_->ResetCamera(bounds);
@@ -334,6 +339,7 @@ void TraineeWindow::look_at_body(std::size_t body) {
 }
 
 void TraineeWindow::set_frame_interval(int ms) {
+  skip_unchanged_ = ms >= 0;  // a driver calling frame() itself gets every frame drawn
   if (ms < 0) {
     timer_.stop();
   } else {
@@ -358,8 +364,10 @@ void TraineeWindow::frame() {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
       const trainer::Vec3 n = picked_ ? picked_->normal : trainer::Vec3::UnitZ();
       const trainer::Vec3 c = trainer::Vec3(s.probe[0], s.probe[1], s.probe[2]) + kFingertipRadius * n;
+      if (!probe_->GetVisibility() || (c - drawn_probe_).norm() > kProbeMoveToDraw) request_render();
       probe_->SetPosition(c.x(), c.y(), c.z());
       probe_->VisibilityOn();
+      drawn_probe_ = c;
     }
     gauge_->set_contact(exercise_->contact());
     if (exercise_->device_switched() && device_banner_->isHidden()) {
@@ -371,11 +379,18 @@ void TraineeWindow::frame() {
     }
   }
   const auto t3 = Clock::now();
-  render_window_->Render();
+  // An unchanged scene is not drawn again (under a software renderer a frame costs a core),
+  // except a few times a second in case something changed that nothing reported.
+  if (last_frame_.bodies_changed > 0) request_render();
+  if (!skip_unchanged_ || render_requested_ || !since_render_.isValid() || since_render_.elapsed() >= kIdleRedrawMs) {
+    render_window_->Render();
+    render_requested_ = false;
+    since_render_.start();
+    ++frames_;
+  }
   last_frame_.tessellate = seconds(t0, t1);
   last_frame_.upload = seconds(t1, t2);
   last_frame_.render = seconds(t3, Clock::now());
-  ++frames_;
   if (fps_clock_.elapsed() >= 1000) {
     frame_rate_ = frames_ * 1000.0 / static_cast<double>(fps_clock_.restart());
     frames_ = 0;
@@ -419,8 +434,20 @@ void TraineeWindow::keyPressEvent(QKeyEvent* event) {
 bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
   if (watched != view_->input()) return QMainWindow::eventFilter(watched, event);
   switch (event->type()) {
+    case QEvent::MouseButtonPress:
+    case QEvent::MouseButtonRelease:
+    case QEvent::Resize:
+    case QEvent::Expose:
+    case QEvent::Show:
+      request_render();  // a drag turns the view; a new size or an uncovered view needs a frame
+      break;
+    default:
+      break;
+  }
+  switch (event->type()) {
     case QEvent::MouseMove: {
       auto* e = static_cast<QMouseEvent*>(event);
+      if (e->buttons() != Qt::NoButton) request_render();
       if (e->buttons() == Qt::NoButton) palpate_at(e->pos());
       return false;  // VTK still turns the view on a drag
     }

@@ -116,6 +116,7 @@ class TraineeWindow : public QMainWindow {
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
   /// box grown by a margin for deformation); returns how many are visible.
   std::size_t cull_bodies();
+  void request_render() { render_requested_ = true; }
 
   std::unique_ptr<trainer::LiveExercise> exercise_;
   VtkView* view_ = nullptr;
@@ -137,6 +138,14 @@ class TraineeWindow : public QMainWindow {
   int frames_ = 0;
   double frame_rate_ = 0.0;
   FrameTimes last_frame_;
+  /// The next frame() draws (something changed); otherwise an unchanged scene is redrawn
+  /// only every kIdleRedrawMs while the timer drives the frames.
+  bool render_requested_ = true;
+  bool skip_unchanged_ = true;
+  QElapsedTimer since_render_;
+  trainer::Vec3 drawn_probe_ = trainer::Vec3::Zero();
+  static constexpr int kIdleRedrawMs = 250;
+  static constexpr double kProbeMoveToDraw = 1e-5;  ///< m: a tenth of a pixel at the closest zoom
   trainer::PressureDial dial_;
   double force_target_ = 0.0;  // N; 0: level mode
   int wheel_rest_ = 0;         // wheel angle not yet a whole notch
