@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "palpa/options/number_checks.hpp"
 #include "palpa/report/cohort.hpp"
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
@@ -291,7 +292,7 @@ Command add_batch_command(CLI::App& parent) {
                "still written), 1 when an output could not be written.");
   app->add_option("PATH", o->paths, "session files or folders")->required();
   app->add_option("--out", o->out, "output folder (created if needed)")->required();
-  app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(CLI::Range(1, 1024));
+  app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(options::integer_in(1, 1024));
   app->add_flag("--reports", o->reports, "also write DIR/sessions/STEM.html, STEM.json and STEM.xapi.json per session");
   app->add_flag("--include-abandoned", o->include_abandoned,
                 "learning curves also count attempts the trainee abandoned (summary.csv always lists them)");

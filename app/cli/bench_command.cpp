@@ -8,6 +8,7 @@
 #include "bench_suites.hpp"
 #include "bench_table1.hpp"
 #include "commands.hpp"
+#include "palpa/options/number_checks.hpp"
 #include "palpa/io/data_paths.hpp"
 
 namespace palpa::cli {
@@ -22,8 +23,8 @@ Command add_bench_command(CLI::App& parent) {
                   "fast method (cold, warm) on flat, curved, concave and wavy bodies, against a high-precision "
                   "reference. Writes accuracy.csv and accuracy.png into --out.");
   accuracy->add_option("--probes", o->probes, "probe positions per body (a palpation-like path); default 2000")
-      ->check(CLI::Range(10, 1000000));
-  accuracy->add_option("--seed", o->seed, "random seed of the paths; default 1");
+      ->check(options::integer_in(10, 1000000));
+  accuracy->add_option("--seed", o->seed, "random seed of the paths; default 1")->check(options::integer_in(0, 4294967295));
   accuracy->add_option("--out", *out, "output folder; default bench-results");
   auto dyn_out = std::make_shared<std::string>("bench-results");
   auto* dynamics = app->add_subcommand(
@@ -59,14 +60,14 @@ Command add_bench_command(CLI::App& parent) {
                 "sustainable rate and the share of one core at 1 kHz, printed beside the paper's figures.");
   table1->add_option("--csv", *t1_csv, "also write the figures as CSV");
   table1->add_option("--seconds", t1->seconds, "simulated seconds of palpation per scene and mode; default 2")
-      ->check(CLI::Range(0.1, 600.0));
+      ->check(options::finite_in(0.1, 600.0, "s"));
   table1->add_option("--realtime-seconds", t1->realtime_seconds,
                      "then run each scene paced at 1 kHz on the real-time thread this long (0: skip); default 2")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(options::finite_in(0.0, 3600.0, "s"));
   table1->add_flag("--load", t1->load, "keep every core busy with other threads during the paced runs");
   table1->add_option("--display-span", t1->display_span,
                      "m: knot spans of the drawn surfaces (display refinement); 0 draws the fitted nets; default 0.004")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(options::finite_in(0.0, 1.0, "m"));
   auto t1_tissue = std::make_shared<std::string>("nm");
   auto t1_indenter = std::make_shared<std::string>("pad");
   table1->add_option("--tissue", *t1_tissue,

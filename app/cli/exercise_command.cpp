@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "exercise_replay.hpp"
+#include "palpa/options/number_checks.hpp"
 #include "palpa/exercise/exercise.hpp"
 #include "palpa/exercise/scripted_trainee.hpp"
 #include "palpa/exercise/tumour_placement.hpp"
@@ -141,7 +142,7 @@ Command add_exercise_command(CLI::App& parent) {
   app->add_option("--seed", o->seed,
                   "seed for tumour placement and the trainee's random choices; default: a fresh one, printed and "
                   "recorded in the session")
-      ->check(CLI::NonNegativeNumber);
+      ->check(options::seed_value());
   app->add_option("--out", o->out_path, "session file to create (never overwritten; suggested extension .palpa)")
       ->required();
   app->add_option("--device", o->device,

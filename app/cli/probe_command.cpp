@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "palpa/options/number_checks.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/csv.hpp"
 #include "palpa/scene/scene.hpp"
@@ -83,10 +84,10 @@ Command add_probe_command(CLI::App& parent) {
       ->check(CLI::IsMember({"fast", "bisect"}))
       ->default_str("fast");
   app->add_option("--bisect-levels", o->bisect_levels, "levels k of the bisection (interval 2^-k); default 10")
-      ->check(CLI::Range(1, 40));
-  app->add_option("--max-force", o->max_force, "cap on |F| in N; default 30")->check(CLI::PositiveNumber);
+      ->check(options::integer_in(1, 40));
+  app->add_option("--max-force", o->max_force, "cap on |F| in N; default 30")->check(options::finite_positive(1000.0, "N"));
   app->add_option("--shear-delta", o->shear_delta, "parameter offset of the shear springs; default 0.1")
-      ->check(CLI::Range(1e-6, 0.5));
+      ->check(options::finite_in(1e-6, 0.5));
   return {app, [o] { return run_probe(*o); }};
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "palpa/options/number_checks.hpp"
 #include <chrono>
 #include <thread>
 
@@ -254,7 +255,7 @@ Command add_simulate_command(CLI::App& parent) {
                   "drive the probe with a device instead of --trajectory: replay:SESSION (the probe path of a "
                   "recorded session, for its duration), or a live device from palpa-cli devices (spacemouse..., "
                   "falcon...) with --realtime for --duration seconds, its workspace over the first body");
-  app->add_option("--duration", o->duration, "s: how long to run a live --device")->check(CLI::PositiveNumber);
+  app->add_option("--duration", o->duration, "s: how long to run a live --device")->check(options::finite_positive(86400.0, "s"));
   app->add_option("--falcon-firmware", o->falcon_firmware,
                   "the Novint Falcon's firmware file (from Novint's driver package; Palpa cannot ship it), uploaded "
                   "when --device is a Falcon (docs/devices.md)");
@@ -264,7 +265,7 @@ Command add_simulate_command(CLI::App& parent) {
       "also (or instead of --out) record the run as a session file (docs/session-format.md): the samples, the "
       "--marks as Mark events, the case; palpa-cli score scores it. Never overwrites a file");
   app->add_option("--trainee", o->trainee, "trainee id recorded in the --session (default: simulate)");
-  app->add_option("--rate", o->rate, "haptic rate in Hz; default 1000")->check(CLI::Range(10.0, 100000.0));
+  app->add_option("--rate", o->rate, "haptic rate in Hz; default 1000")->check(options::finite_in(10.0, 100000.0, "Hz"));
   auto* fast = app->add_flag("--fast", o->fast, "run the ticks as fast as possible, deterministically (default)");
   app->add_flag("--realtime", o->realtime,
                 "run on the real-time haptic thread at --rate for the trajectory's duration and print the loop "

@@ -21,6 +21,7 @@
 
 #include "app_windows.hpp"
 #include "frame_bench.hpp"
+#include "palpa/options/number_checks.hpp"
 #include "quit_on_signal.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
@@ -159,7 +160,7 @@ int main(int argc, char** argv) {
                  "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
   cli.add_option("--trainee", trainee, "trainee id recorded in the session (default: $USER)");
   cli.add_option("--seed", seed, "seed for placing the case's randomized tumours (default: a fresh one)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(palpa::options::seed_value());
   palpa::gui::DeviceChoice device;
   cli.add_option("--device", device.id,
                  "trainee: the device to palpate with, an id from 'palpa-cli devices' (virtual = the mouse, "
@@ -175,11 +176,11 @@ int main(int argc, char** argv) {
                "measure the frame rate of the paper's Table 1 scenes (1-35 bodies) with the haptic loop at 1 kHz "
                "and a scripted finger, dynamics on and off; print a table and exit");
   cli.add_option("--seconds", bench_options.seconds, "with --bench: seconds measured per scene and mode (default 3)")
-      ->check(CLI::PositiveNumber);
+      ->check(palpa::options::finite_positive(3600.0, "s"));
   cli.add_option("--csv", bench_csv, "with --bench: also write the rows to this CSV file");
   cli.add_option("--max-bodies", bench_options.max_bodies,
                  "with --bench: only the scenes with at most this many bodies (default: all)")
-      ->check(CLI::PositiveNumber);
+      ->check(palpa::options::integer_in(1, 1000));
   cli.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.");
   try {
     cli.parse(argc, argv);

@@ -274,6 +274,72 @@ class CliBasics(unittest.TestCase):
                          ["u,v,x,y,z,radius,stiffness,damping,mass"])
 
 
+class NumericOptions(unittest.TestCase):
+    """Every numeric option refuses NaN, infinities, non-numbers and out-of-range values with
+    one line naming the option and its range; the boundary values themselves are accepted."""
+
+    assertNoCrash = CliBasics.assertNoCrash
+    assertOneLineError = CliBasics.assertOneLineError
+    write = staticmethod(CliBasics.write)
+
+    @classmethod
+    def setUpClass(cls):
+        cls._tmp = tempfile.TemporaryDirectory(prefix="palpa_cli_numbers_")
+        cls.dir = cls._tmp.name
+        cls.case = os.path.join(cls.dir, "small_case.json")
+        with open(cls.case, "w", encoding="utf-8") as fh:
+            json.dump(small_case(), fh)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls._tmp.cleanup()
+
+    # (arguments before the option, option, its range's text in --help, values outside it)
+    CASES = (
+        (["probe", "CASE", "--points", "POINTS"], "--max-force", "above 0, at most 1000 N", ["0", "1001"]),
+        (["probe", "CASE", "--points", "POINTS"], "--shear-delta", "1e-06 to 0.5", ["0", "0.6"]),
+        (["probe", "CASE", "--points", "POINTS"], "--bisect-levels", "1 to 40", ["0", "41", "2.5"]),
+        (["simulate", "CASE", "--trajectory", "POINTS", "--out", "OUT"], "--rate", "10 to 100000 Hz", ["5"]),
+        (["simulate", "CASE", "--device", "virtual", "--out", "OUT"], "--duration", "above 0, at most 86400 s",
+         ["0", "1e6"]),
+        (["exercise", "CASE", "--trainee", "t", "--out", "OUT"], "--seed", "2^64 - 1",
+         ["-1", "18446744073709551616", "1.5", "1e3"]),
+        (["batch", "POINTS", "--out", "OUT"], "--jobs", "1 to 1024", ["0", "1025"]),
+        (["bench", "table1"], "--seconds", "0.1 to 600 s", ["0.01", "601"]),
+    )
+
+    def fill(self, args):
+        points = self.write(self.dir, "points.csv", "x,y,z\n0.03,0.03,0.004\n")
+        out = os.path.join(self.dir, "never-written.out")
+        return [{"CASE": self.case, "POINTS": points, "OUT": out}.get(a, a) for a in args]
+
+    def test_nan_infinity_and_out_of_range_are_refused_naming_the_option(self):
+        for before, option, _, outside in self.CASES:
+            for value in ["nan", "NaN", "inf", "-inf", "1e400", "", "3x"] + outside:
+                with self.subTest(option=option, value=value):
+                    res = run(self.fill(before) + [option, value])
+                    line = self.assertOneLineError(res, "%s %r" % (option, value), contains=(option,))
+                    self.assertTrue("finite" in line or "range" in line or "whole number" in line
+                                    or "not a seed" in line, line)
+                    self.assertNotRegex(line, r"\d{20,}e|e\+308", "a human-sized bound: " + line)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "never-written.out")))
+
+    def test_the_range_is_in_the_help_text(self):
+        for before, option, shown, _ in self.CASES:
+            with self.subTest(option=option):
+                res = run([before[0]] + ([before[1]] if before[0] == "bench" else []) + ["--help"])
+                self.assertEqual(res.returncode, 0, res.stderr)
+                help_line = [ln for ln in res.stdout.splitlines() if option in ln]
+                self.assertTrue(help_line and shown in " ".join(res.stdout.split()), (option, help_line))
+
+    def test_the_bounds_themselves_are_accepted(self):
+        args = self.fill(["probe", "CASE", "--points", "POINTS"])
+        for option, value in (("--max-force", "1000"), ("--shear-delta", "0.5"), ("--bisect-levels", "40")):
+            with self.subTest(option=option):
+                res = run(args + [option, value])
+                self.assertEqual(res.returncode, 0, res.stderr)
+
+
 def main():
     global CLI
     ap = argparse.ArgumentParser(description="palpa-cli basic behaviour")

@@ -326,6 +326,19 @@ class TraineeWindowTest : public QObject {
     QVERIFY2(lines[0].startsWith(bad + ": line "), qPrintable(lines[0]));
     const Run mode = run_palpa({"--mode", "nonsense"});
     QCOMPARE(mode.code, 2);
+    // Numbers: NaN, infinities and seeds beyond 2^64 - 1 are refused in one line naming the option.
+    const std::pair<QStringList, QString> numbers[] = {
+        {{"--bench", "--seconds", "nan"}, "--seconds"},  {{"--bench", "--seconds", "inf"}, "--seconds"},
+        {{"--bench", "--max-bodies", "0"}, "--max-bodies"}, {{"--seed", "18446744073709551616"}, "--seed"},
+        {{"--seed", "-3"}, "--seed"},
+    };
+    for (const auto& [arguments, option] : numbers) {
+      const Run n = run_palpa(arguments);
+      QCOMPARE(n.code, 2);
+      const QStringList said = n.err.trimmed().split('\n');
+      QCOMPARE(said.size(), 1);
+      QVERIFY2(said[0].startsWith("palpa: error: " + option), qPrintable(said[0]));
+    }
   }
 };
 
