@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "output_guard.hpp"
 #include "palpa/options/number_checks.hpp"
 #include "palpa/report/cohort.hpp"
 #include "palpa/report/encoding.hpp"
@@ -41,13 +42,31 @@ struct BatchOptions {
   bool reports = false;
   bool include_abandoned = false;  ///< learning curves: also the attempts a trainee abandoned
   bool all_modes = false;          ///< learning curves: every mode, not trainee exercises only
+  bool force = false;              ///< the outputs of an earlier batch in --out may be replaced
 };
+
 
 struct Input {
   std::string file;  ///< as found (the given spelling, or folder / relative path)
   std::string stem;  ///< unique among the inputs: names the per-session report files
   std::string error; ///< set when the path could not even be listed
 };
+
+// Why the batch may not write into `out`: an earlier batch's outputs are there (without
+// --force), or an input is one of the files it writes; empty when it may.
+std::string out_refusal(const fs::path& out, bool force, const std::vector<Input>& inputs) {
+  std::vector<fs::path> files;
+  for (const auto& input : inputs) files.emplace_back(input.file);
+  std::vector<fs::path> outputs{out / "summary.csv", out / "errors.csv", out / "cohort.html"};
+  std::error_code ec;
+  for (const char* folder : {"trainees", "sessions"}) {
+    for (fs::directory_iterator it(out / folder, ec), end; !ec && it != end; it.increment(ec)) {
+      outputs.push_back(it->path());
+    }
+    ec.clear();
+  }
+  return refusal_to_write(outputs, force, files);
+}
 
 /// One scored session as kept until the end: no samples, no maps.
 struct Scored {
@@ -177,6 +196,10 @@ Outcome process(const Input& input, const fs::path& sessions_dir, bool reports, 
 int run_batch(const BatchOptions& o) {
   const auto inputs = collect_inputs(o.paths);
   const fs::path out(o.out);
+  if (auto why = out_refusal(out, o.force, inputs); !why.empty()) {
+    print_error("--out: " + why);
+    return kBadInput;
+  }
   std::error_code ec;
   fs::create_directories(out / "trainees", ec);
   if (!ec && o.reports) fs::create_directories(out / "sessions", ec);
@@ -291,7 +314,11 @@ Command add_batch_command(CLI::App& parent) {
                "DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
                "still written), 1 when an output could not be written.");
   app->add_option("PATH", o->paths, "session files or folders")->required();
-  app->add_option("--out", o->out, "output folder (created if needed)")->required();
+  app->add_option("--out", o->out,
+                  "output folder (created if needed); the outputs of an earlier batch there are replaced only with "
+                  "--force, and never a session given as input")
+      ->required();
+  app->add_flag("--force", o->force, "replace the outputs of an earlier batch in --out");
   app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(options::integer_in(1, 1024));
   app->add_flag("--reports", o->reports, "also write DIR/sessions/STEM.html, STEM.json and STEM.xapi.json per session");
   app->add_flag("--include-abandoned", o->include_abandoned,

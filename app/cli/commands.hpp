@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -27,10 +28,23 @@ Command add_score_command(CLI::App& parent);
 Command add_batch_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
 
+/// --report DIR [--force]: where a session's report files go (none when `dir` is empty), and
+/// whether files already there may be replaced.
+struct ReportRequest {
+  std::string dir;
+  bool force = false;
+};
+
+/// Why the report of the session `session` may not be written as `request` asks (a file it
+/// would write exists and there is no --force, or it would be one of `inputs`); empty when it
+/// may, or when no report is asked for.
+std::string report_refusal(const std::filesystem::path& session, const ReportRequest& request,
+                           const std::vector<std::filesystem::path>& inputs);
+
 /// Reads and scores the session at `path`; prints the score card (or with `json` the report
-/// JSON) and writes the report files into `report_dir` when it is not empty. Returns the
-/// exit code (2 for a bad session, 1 when the report cannot be written).
-int score_and_report(const std::filesystem::path& path, bool json, const std::string& report_dir);
+/// JSON) and writes the report files as `report` asks. Returns the exit code (2 for a bad
+/// session or a report it may not write, 1 when the report cannot be written).
+int score_and_report(const std::filesystem::path& path, bool json, const ReportRequest& report);
 
 /// Prints "palpa-cli: error: <message>" on one line of stderr.
 void print_error(const std::string& message);

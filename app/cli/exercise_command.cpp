@@ -29,7 +29,7 @@ struct ExerciseCliOptions {
   std::optional<std::uint64_t> seed;
   std::string out_path;
   bool json = false;
-  std::string report_dir;
+  ReportRequest report;
   std::string device = "scripted";
 };
 
@@ -41,6 +41,13 @@ std::uint64_t fresh_seed() {
 }
 
 int run_exercise_command(ExerciseCliOptions o) {
+  // Before palpating: a report that could not be written is said now, not after the run.
+  std::vector<std::filesystem::path> inputs{o.case_path};
+  if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
+  if (auto why = report_refusal(o.out_path, o.report, inputs); !why.empty()) {
+    print_error("--report: " + why);
+    return kBadInput;
+  }
   if (o.device.rfind("replay:", 0) == 0) {
     if (!o.case_path.empty()) {
       print_error("exercise: CASE is not used with --device replay: (the session's own case, as placed, is replayed)");
@@ -50,7 +57,7 @@ int run_exercise_command(ExerciseCliOptions o) {
       print_error("--device: replay needs a session file: replay:SESSION");
       return kBadInput;
     }
-    return run_replay_exercise(o.device.substr(7), o.trainee, o.out_path, o.json, o.report_dir);
+    return run_replay_exercise(o.device.substr(7), o.trainee, o.out_path, o.json, o.report);
   }
   if (o.device != "scripted") {
     print_error("--device: " + o.device +
@@ -117,7 +124,7 @@ int run_exercise_command(ExerciseCliOptions o) {
                o.out_path.c_str());
 
   // Score what was recorded, read back from the file: exactly what `palpa-cli score` does.
-  const int scored = score_and_report(o.out_path, o.json, o.report_dir);
+  const int scored = score_and_report(o.out_path, o.json, o.report);
   return scored == kBadInput ? kFailure : scored;  // the session we just wrote must read back
 }
 
@@ -150,9 +157,10 @@ Command add_exercise_command(CLI::App& parent) {
                   "the recorded probe path of SESSION palpates its recorded case through this engine again, with its "
                   "marks; the new session goes to --out)");
   app->add_flag("--json", o->json, "print the score report as JSON instead of the score card");
-  app->add_option("--report", o->report_dir,
+  app->add_option("--report", o->report.dir,
                   "also write the session's report into this folder: STEM.html (maps and force plot), STEM.json, "
-                  "STEM.xapi.json, STEM.csv");
+                  "STEM.xapi.json, STEM.csv; never replaces a file without --force, nor the case");
+  app->add_flag("--force", o->report.force, "let --report replace report files that exist");
   return {app, [o] { return run_exercise_command(*o); }};
 }
 

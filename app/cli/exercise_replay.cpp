@@ -20,7 +20,7 @@
 namespace palpa::cli {
 
 int run_replay_exercise(const std::string& session_path, const std::string& trainee, const std::string& out_path,
-                        bool json, const std::string& report_dir) {
+                        bool json, const ReportRequest& report) {
   session::Session recorded;
   std::unique_ptr<scene::Scene> scene;
   io::CaseFile placed;
@@ -74,7 +74,7 @@ int run_replay_exercise(const std::string& session_path, const std::string& trai
   }
   std::fprintf(stderr, "exercise: replayed %s (%llu ticks, %.1f s) through the engine, recorded in %s\n",
                session_path.c_str(), static_cast<unsigned long long>(ticks), replay->duration(), out_path.c_str());
-  const int scored = score_and_report(out_path, json, report_dir);
+  const int scored = score_and_report(out_path, json, report);
   return scored == kBadInput ? kFailure : scored;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output_guard.hpp"
 #include "palpa/report/report_json.hpp"
 #include "palpa/report/session_report.hpp"
 #include "palpa/score/score.hpp"
@@ -19,14 +20,27 @@ namespace {
 struct ScoreOptions {
   std::string session;
   bool json = false;
-  std::string report_dir;
+  ReportRequest report;
 };
 
-int run_score(const ScoreOptions& o) { return score_and_report(o.session, o.json, o.report_dir); }
+int run_score(const ScoreOptions& o) { return score_and_report(o.session, o.json, o.report); }
 
 }  // namespace
 
-int score_and_report(const std::filesystem::path& path, bool json, const std::string& report_dir) {
+std::string report_refusal(const std::filesystem::path& session, const ReportRequest& request,
+                           const std::vector<std::filesystem::path>& inputs) {
+  if (request.dir.empty()) return {};
+  std::vector<std::filesystem::path> all = inputs;
+  all.push_back(session);
+  return refusal_to_write(report::session_report_paths(request.dir, session.stem().string()), request.force, all);
+}
+
+int score_and_report(const std::filesystem::path& path, bool json, const ReportRequest& report) {
+  if (auto why = report_refusal(path, report, {}); !why.empty()) {
+    print_error("--report: " + why);
+    return kBadInput;
+  }
+  const std::string& report_dir = report.dir;
   session::Session session;
   score::Score score;
   try {
@@ -66,9 +80,11 @@ Command add_score_command(CLI::App& parent) {
                "pass/fail by gates. Exit 0 when scored (passed or failed), 2 for an unreadable session.");
   app->add_option("SESSION", o->session, "session file (.palpa)")->required();
   app->add_flag("--json", o->json, "print the report as JSON (score and session) instead of the score card");
-  app->add_option("--report", o->report_dir,
+  app->add_option("--report", o->report.dir,
                   "also write DIR/STEM.html (self-contained page with maps), STEM.json, STEM.xapi.json (xAPI "
-                  "statement) and STEM.csv, STEM being the session file's stem");
+                  "statement) and STEM.csv, STEM being the session file's stem; never replaces a file without "
+                  "--force, nor the session itself");
+  app->add_flag("--force", o->report.force, "let --report replace report files that exist");
   return {app, [o] { return run_score(*o); }};
 }
 

@@ -3,10 +3,12 @@
 // the run as a session (marks become Mark events) that palpa-cli score can score.
 #include <cstdio>
 #include <limits>
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "commands.hpp"
+#include "output_guard.hpp"
 #include "palpa/options/number_checks.hpp"
 #include <chrono>
 #include <thread>
@@ -41,6 +43,7 @@ struct SimulateOptions {
   bool realtime = false;
   bool no_dynamics = false;
   bool no_shear = false;
+  bool force = false;      ///< --out may replace an existing file (never an input)
   std::string device;      ///< instead of --trajectory: replay:SESSION, or a live device with --realtime
   double duration = 0.0;   ///< s, with a live device
   std::string falcon_firmware;
@@ -75,6 +78,17 @@ int run_simulate(const SimulateOptions& o) {
   if (o.out_path.empty() && o.session_path.empty()) {
     print_error("simulate: --out or --session is required (see palpa-cli simulate --help)");
     return kBadInput;
+  }
+  if (!o.out_path.empty()) {
+    std::vector<std::filesystem::path> outputs{o.out_path};
+    if (!o.marks_path.empty()) outputs.emplace_back(o.out_path + ".marks.csv");
+    std::vector<std::filesystem::path> inputs{o.case_path, o.trajectory_path, o.marks_path, o.falcon_firmware,
+                                              o.session_path};
+    if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
+    if (auto why = refusal_to_write(outputs, o.force, inputs); !why.empty()) {
+      print_error("--out: " + why);
+      return kBadInput;
+    }
   }
   std::unique_ptr<scene::Scene> scene;
   io::CaseFile case_file;
@@ -259,7 +273,9 @@ Command add_simulate_command(CLI::App& parent) {
   app->add_option("--falcon-firmware", o->falcon_firmware,
                   "the Novint Falcon's firmware file (from Novint's driver package; Palpa cannot ship it), uploaded "
                   "when --device is a Falcon (docs/devices.md)");
-  app->add_option("--out", o->out_path, "output CSV of samples");
+  app->add_option("--out", o->out_path,
+                  "output CSV of samples; never replaces a file without --force, nor any input of the command");
+  app->add_flag("--force", o->force, "let --out (and OUT.marks.csv) replace files that exist");
   app->add_option(
       "--session", o->session_path,
       "also (or instead of --out) record the run as a session file (docs/session-format.md): the samples, the "

@@ -14,6 +14,7 @@ import csv
 import io
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -161,6 +162,73 @@ class Score(unittest.TestCase):
         self.assertIn("--report", res.stdout)
         self.assertIn("--json", res.stdout)
         self.assertEqual(run(["score"]).returncode, 2)
+
+
+class NeverOverwrites(unittest.TestCase):
+    """No command writes over an existing file without --force, nor over one of its own
+    inputs even with it; what was there stays byte for byte."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="palpa_overwrite_")
+        self.dir = self.tmp.name
+        self.session = os.path.join(self.dir, "default.palpa")
+        shutil.copy(os.path.join(SESSIONS, "alice-1.palpa"), self.session)
+        self.case = os.path.join(self.dir, "default.json")  # a case beside it, named like its report
+        shutil.copy(os.path.join(REPO, "data", "cases", "flat-5x5.json"), self.case)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def content(self, path):
+        with open(path, "rb") as fh:
+            return fh.read()
+
+    def assertRefused(self, res, *words):
+        self.assertEqual(res.returncode, 2, res.stdout + res.stderr)
+        lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
+        self.assertEqual(len(lines), 1, res.stderr)
+        for w in words:
+            self.assertIn(w, lines[0])
+
+    def test_a_report_beside_a_case_of_the_same_name_is_refused_without_force(self):
+        case = self.content(self.case)
+        res = run(["score", self.session, "--report", self.dir])
+        self.assertRefused(res, "--report", "default.json", "exists", "--force")
+        self.assertEqual(self.content(self.case), case)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "default.html")))  # nothing half-written
+        res = run(["score", self.session, "--report", self.dir, "--force"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn(b'"sensitivity"', self.content(self.case))  # replaced, as asked
+
+    def test_simulate_refuses_an_existing_out_and_its_own_inputs_even_with_force(self):
+        trajectory = os.path.join(self.dir, "t.csv")
+        with open(trajectory, "w") as fh:
+            fh.write("t,x,y,z\n0,0,0,0.1\n0.01,0,0,0.1\n")
+        before = self.content(self.case), self.content(trajectory)
+        for out in (self.case, trajectory):
+            for force in ([], ["--force"]):
+                res = run(["simulate", self.case, "--trajectory", trajectory, "--out", out] + force)
+                self.assertRefused(res, "--out", "input")
+        self.assertEqual((self.content(self.case), self.content(trajectory)), before)
+        out = os.path.join(self.dir, "run.csv")
+        self.assertEqual(run(["simulate", self.case, "--trajectory", trajectory, "--out", out]).returncode, 0)
+        first = self.content(out)
+        self.assertRefused(run(["simulate", self.case, "--trajectory", trajectory, "--out", out]), "exists")
+        self.assertEqual(self.content(out), first)
+        self.assertEqual(run(["simulate", self.case, "--trajectory", trajectory, "--out", out, "--force"]).returncode, 0)
+
+    def test_batch_refuses_an_earlier_batchs_outputs_without_force(self):
+        out = os.path.join(self.dir, "batch")
+        self.assertEqual(run(["batch", self.session, "--out", out]).returncode, 0)
+        summary = self.content(os.path.join(out, "summary.csv"))
+        self.assertRefused(run(["batch", self.session, "--out", out]), "--out", "exists", "--force")
+        self.assertEqual(self.content(os.path.join(out, "summary.csv")), summary)
+        self.assertEqual(run(["batch", self.session, "--out", out, "--force"]).returncode, 0)
+        # A session that sits where an output goes is never replaced, even with --force.
+        trap = os.path.join(out, "summary.csv")
+        shutil.copy(self.session, trap)
+        self.assertRefused(run(["batch", trap, "--out", out, "--force"]), "input")
+        self.assertEqual(self.content(trap), self.content(self.session))
 
 
 def main():

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <system_error>
 
 #include <QComboBox>
 #include <QFileDialog>
+#include <QMessageBox>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -328,7 +331,21 @@ bool ReviewWindow::export_report(const std::filesystem::path& dir) {
 
 void ReviewWindow::choose_export_folder() {
   const QString dir = QFileDialog::getExistingDirectory(this, tr("Export the report into"));
-  if (!dir.isEmpty()) export_report(dir.toStdString());
+  if (dir.isEmpty()) return;
+  // Files already there (an earlier export, or a case named like the session) are replaced
+  // only when the user says so.
+  QStringList there;
+  for (const auto& path : report::session_report_paths(dir.toStdString(), file_.stem().string())) {
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) there << QString::fromStdString(path.filename().string());
+  }
+  if (!there.isEmpty()) {
+    const auto answer = QMessageBox::question(
+        this, tr("Replace files?"), tr("%1 already holds %2. Replace them with this report?").arg(dir, there.join(", ")),
+        QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
+    if (answer != QMessageBox::Yes) return;
+  }
+  export_report(dir.toStdString());
 }
 
 }  // namespace palpa::ui

@@ -18,6 +18,16 @@ void write_text(const std::filesystem::path& path, std::string_view text) {
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
+std::vector<std::filesystem::path> session_report_paths(const std::filesystem::path& dir, const std::string& stem,
+                                                        const ReportFiles& files) {
+  std::vector<std::filesystem::path> paths;
+  if (files.json) paths.push_back(dir / (stem + ".json"));
+  if (files.xapi) paths.push_back(dir / (stem + ".xapi.json"));
+  if (files.csv) paths.push_back(dir / (stem + ".csv"));
+  if (files.html) paths.push_back(dir / (stem + ".html"));
+  return paths;
+}
+
 void write_session_report(const std::filesystem::path& dir, const std::string& stem, const SessionHeader& header,
                           const session::Session& session, const score::Score& score, const ReportFiles& files) {
   std::error_code ec;

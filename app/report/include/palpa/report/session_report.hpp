@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "palpa/report/session_header.hpp"
 #include "palpa/score/score.hpp"
@@ -14,6 +15,11 @@ namespace palpa::report {
 struct ReportFiles {
   bool html = true, json = true, xapi = true, csv = true;
 };
+
+/// The files write_session_report writes for these `files`, in `dir` (a caller checks them
+/// before writing: palpa-cli refuses to replace any without --force).
+std::vector<std::filesystem::path> session_report_paths(const std::filesystem::path& dir, const std::string& stem,
+                                                        const ReportFiles& files = {});
 
 /// Creates `dir` if needed. Throws std::runtime_error "PATH: cannot write" on failure.
 void write_session_report(const std::filesystem::path& dir, const std::string& stem, const SessionHeader& header,
