@@ -234,6 +234,26 @@ class Batch(unittest.TestCase):
         self.assertEqual(self.batch(SESSIONS, "--out", self.tmp.name, "--jobs", "0").returncode, 2)
 
 
+class SpreadsheetSafe(unittest.TestCase):
+    """A trainee id a spreadsheet would run as a formula reaches summary.csv neutralised (a
+    leading ' inside quotes, OWASP's advice) and the JSON report as typed."""
+
+    def test_a_formula_trainee_id_is_written_safely(self):
+        hostile = '=HYPERLINK("http://example.invalid","click")'
+        with tempfile.TemporaryDirectory(prefix="palpa_csv_") as d:
+            session = os.path.join(d, "s.palpa")
+            res = run(["exercise", os.path.join(REPO, "data", "cases", "flat-5x5.json"), "--trainee", hostile,
+                       "--style", "light", "--seed", "1", "--out", session])
+            self.assertEqual(res.returncode, 0, res.stderr)
+            res = run(["batch", session, "--out", os.path.join(d, "out")])
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "out", "summary.csv"), newline="") as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual(rows[0]["trainee"], "'" + hostile)
+            res = run(["score", session, "--json"])
+            self.assertEqual(json.loads(res.stdout)["session"]["trainee"], hostile)
+
+
 def main():
     global CLI, REPO, MAKE_SESSIONS
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])

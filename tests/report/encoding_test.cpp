@@ -61,6 +61,13 @@ TEST(Encoding, CsvFieldsQuoteOnlyWhenNeeded) {
   EXPECT_EQ(csv_field("Smith, \"Jo\""), "\"Smith, \"\"Jo\"\"\"");
   EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
   EXPECT_EQ(csv_field(""), "");
+  // What a spreadsheet would execute is neutralised (OWASP): a leading ' inside quotes.
+  EXPECT_EQ(csv_field("=HYPERLINK(\"http://x\",\"y\")"), "\"'=HYPERLINK(\"\"http://x\"\",\"\"y\"\")\"");
+  EXPECT_EQ(csv_field("+1"), "\"'+1\"");
+  EXPECT_EQ(csv_field("-2+3"), "\"'-2+3\"");
+  EXPECT_EQ(csv_field("@SUM(A1)"), "\"'@SUM(A1)\"");
+  EXPECT_EQ(csv_field("\t=1"), "\"'\t=1\"");
+  EXPECT_EQ(csv_field("a=b"), "a=b");  // only a leading one counts
 }
 
 TEST(Encoding, NumbersReadBackExactly) {

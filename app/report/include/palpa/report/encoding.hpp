@@ -28,8 +28,10 @@ inline constexpr std::string_view kPalpaNamespace = "2bb29d3e-4f5a-5c29-9df1-d08
 /// Text safe inside HTML elements and quoted attributes: & < > " ' escaped.
 std::string html_escape(std::string_view text);
 
-/// One CSV field (RFC 4180): quoted when it holds a comma, a quote, CR or LF, with inner
-/// quotes doubled; otherwise as is.
+/// One CSV field of text (RFC 4180): quoted when it holds a comma, a quote, CR or LF, with
+/// inner quotes doubled; otherwise as is. Text a spreadsheet would run as a formula (a
+/// leading =, +, -, @, tab or CR) is quoted with a ' before it (OWASP, "CSV Injection",
+/// https://owasp.org/www-community/attacks/CSV_Injection). Numbers go through number_text.
 std::string csv_field(std::string_view text);
 
 /// A number for CSV and text: the shortest form that reads back to the same double;
