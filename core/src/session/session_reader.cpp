@@ -45,6 +45,7 @@ class Reader {
   bool wal_files_missing() const;
   void open();
   void check_identity();
+  void check_schema();
   bool has_table(const char* name);
   void read_meta(Session& session);
   void read_events(Session& session);
@@ -167,6 +168,42 @@ void Reader::check_identity() {
     reason += "'; sessions have none)";
     fail("file", reason);
   }
+}
+
+// Exactly the documented schema, compared before a row is read: an extra table, index,
+// view or trigger, a changed column or a generated one (which SQLite would evaluate on
+// reading it, at whatever cost the file's author chose) is refused, naming the first
+// difference.
+void Reader::check_schema() {
+  std::string found;
+  try {
+    found = detail::schema_fingerprint(db_);
+  } catch (const std::runtime_error&) {
+    fail_sqlite("file", sqlite3_extended_errcode(db_));
+  }
+  const std::string& expected = detail::expected_schema_fingerprint();
+  if (found == expected) return;
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
+      end = text.find('\n', at);
+      out.push_back(text.substr(at, end - at));
+    }
+    return out;
+  };
+  const auto have = lines(found);
+  const auto want = lines(expected);
+  for (const auto& line : have) {
+    if (std::find(want.begin(), want.end(), line) == want.end()) {
+      fail("file", "not a Palpa session (its schema has " + line + ", which a session does not; docs/session-format.md)");
+    }
+  }
+  for (const auto& line : want) {
+    if (std::find(have.begin(), have.end(), line) == have.end()) {
+      fail("file", "not a Palpa session (its schema lacks " + line + "; docs/session-format.md)");
+    }
+  }
+  fail("file", "not a Palpa session (its schema differs from docs/session-format.md)");
 }
 
 template <typename T>
@@ -384,6 +421,7 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
   std::string error;
   if (const int rc = detail::exec(db_, "BEGIN", error); rc != SQLITE_OK) fail_sqlite("file", rc);
   check_identity();
+  check_schema();
   Session session;
   read_meta(session);
   read_events(session);

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <stdexcept>
+#include <vector>
 
 namespace palpa::session::detail {
 
@@ -14,6 +15,59 @@ Statement::Statement(sqlite3* db, std::string_view sql) {
     throw std::runtime_error(sqlite3_errmsg(db));
   }
   if (stmt_ == nullptr) throw std::runtime_error("empty statement");
+}
+
+namespace {
+
+std::string column_text(sqlite3_stmt* stmt, int column) {
+  const auto* text = sqlite3_column_text(stmt, column);
+  if (text == nullptr) return "NULL";
+  return std::string(reinterpret_cast<const char*>(text), static_cast<std::size_t>(sqlite3_column_bytes(stmt, column)));
+}
+
+}  // namespace
+
+std::string schema_fingerprint(sqlite3* db) {
+  std::string out;
+  std::vector<std::string> tables;
+  Statement objects(db, "SELECT type, name, tbl_name FROM sqlite_schema ORDER BY type, name");
+  int rc = SQLITE_ROW;
+  while ((rc = sqlite3_step(objects.get())) == SQLITE_ROW) {
+    const std::string type = column_text(objects.get(), 0);
+    const std::string name = column_text(objects.get(), 1);
+    out += type + ' ' + name + " on " + column_text(objects.get(), 2) + '\n';
+    if (type == "table") tables.push_back(name);
+  }
+  if (rc != SQLITE_DONE) throw std::runtime_error(sqlite3_errmsg(db));
+  Statement columns(db, "SELECT name, type, \"notnull\", dflt_value, pk, hidden FROM pragma_table_xinfo(?)");
+  for (const auto& table : tables) {
+    sqlite3_bind_text(columns.get(), 1, table.c_str(), -1, SQLITE_TRANSIENT);
+    while ((rc = sqlite3_step(columns.get())) == SQLITE_ROW) {
+      out += "column " + table + '.' + column_text(columns.get(), 0) + ' ' + column_text(columns.get(), 1) +
+             " notnull " + column_text(columns.get(), 2) + " default " + column_text(columns.get(), 3) + " pk " +
+             column_text(columns.get(), 4) + " hidden " + column_text(columns.get(), 5) + '\n';
+    }
+    if (rc != SQLITE_DONE) throw std::runtime_error(sqlite3_errmsg(db));
+    sqlite3_reset(columns.get());
+  }
+  return out;
+}
+
+const std::string& expected_schema_fingerprint() {
+  static const std::string expected = [] {
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(":memory:", &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
+      sqlite3_close_v2(db);
+      throw std::runtime_error("cannot open an in-memory database");
+    }
+    std::string error;
+    std::string fingerprint;
+    if (exec(db, kSchema, error) == SQLITE_OK) fingerprint = schema_fingerprint(db);
+    sqlite3_close_v2(db);
+    if (fingerprint.empty()) throw std::runtime_error("the session schema does not build: " + error);
+    return fingerprint;
+  }();
+  return expected;
 }
 
 Statement& Statement::operator=(Statement&& other) noexcept {

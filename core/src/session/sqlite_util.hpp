@@ -69,6 +69,16 @@ int exec(sqlite3* db, const char* sql, std::string& error);
 /// std::runtime_error(errmsg) on failure or when there is no row.
 std::string query_text(sqlite3* db, const char* sql);
 
+/// The schema of `db` as one line per object and per column: every object of
+/// sqlite_schema (type, name, table; sorted) and every column of each table as
+/// PRAGMA table_xinfo gives it (name, declared type, not null, default, primary key and
+/// hidden: a generated column is hidden 2 or 3). Reads nothing but the schema. Throws
+/// std::runtime_error(errmsg).
+std::string schema_fingerprint(sqlite3* db);
+
+/// schema_fingerprint of kSchema itself (built once in memory): what a session must have.
+const std::string& expected_schema_fingerprint();
+
 /// Doubles as text that reads back to the same bits (shortest round-trip form).
 std::string exact_text(double value);
 
