@@ -147,6 +147,21 @@ TEST_F(SessionCorrupt, HandEditedSamplesAreCheckedRowByRow) {
   sql(body, "UPDATE samples SET body = 3 WHERE tick = 7;");  // the case has one body
   expect_refused(body, "samples tick 7: column body: must be in 0..0, not 3");
 
+  // Contact parameters out of the format's ranges (u = 4.2e213 reached an int cast in the
+  // coverage grid: undefined behaviour) and a press deeper than the body is thick.
+  const auto far = good("far-u.palpa");
+  sql(far, "UPDATE samples SET u = 4.2e213 WHERE tick = 8;");  // every third tick is out of contact
+  expect_refused(far, "samples tick 8: column u: outside [0, 1]: 4.2e+213");
+  const auto negative = good("negative-v.palpa");
+  sql(negative, "UPDATE samples SET v = -0.5 WHERE tick = 10;");
+  expect_refused(negative, "samples tick 10: column v: outside [0, 1]: -0.5");
+  const auto deep = good("deep.palpa");
+  sql(deep, "UPDATE samples SET depth = 3.0 WHERE tick = 11;");
+  expect_refused(deep, "samples tick 11: column depth: outside [0, ");
+  const auto round_off = good("round-off.palpa");  // a writer's round-off is accepted and clamped
+  sql(round_off, "UPDATE samples SET u = 1.0000000001 WHERE tick = 13;");
+  EXPECT_EQ(read_session(round_off).samples.at(13).u, 1.0);
+
   const auto contact = good("contact.palpa");
   sql(contact, "UPDATE samples SET depth = NULL WHERE tick = 8;");  // in contact, depth missing
   expect_refused(contact, "samples tick 8: column depth: missing (NULL)");

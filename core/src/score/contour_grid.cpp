@@ -105,9 +105,13 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
 }
 
 int ContourGrid::cell_of(double u, double v) const {
-  const int i = std::clamp(static_cast<int>(std::floor(u * rows_)), 0, rows_ - 1);
-  const int j = std::clamp(static_cast<int>(std::floor(v * cols_)), 0, cols_ - 1);
-  return i * cols_ + j;
+  // Clamped before the cast: a parameter far outside [0, 1] (or NaN) would make the cast
+  // undefined; the reader refuses such samples, this keeps any caller defined.
+  const auto index = [](double t, int n) {
+    const double x = std::floor(std::clamp(std::isnan(t) ? 0.0 : t, 0.0, 1.0) * n);
+    return std::min(static_cast<int>(x), n - 1);
+  };
+  return index(u, rows_) * cols_ + index(v, cols_);
 }
 
 void ContourGrid::lookup(double u, double v, Vec3& top, double& radius) const {

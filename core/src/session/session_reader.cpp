@@ -71,6 +71,7 @@ class Reader {
   bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
   sqlite3* db_ = nullptr;
   std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
+  std::vector<double> thickness_;  // m, per body: 2 x its largest radius, the deepest press it has
 };
 
 void Reader::fail_wal_missing() const {
@@ -265,6 +266,11 @@ void Reader::read_meta(Session& session) {
   try {
     auto parsed = io::parse_case(case_text, file_ + ": meta case");
     bodies_ = parsed.bodies.size();
+    for (const auto& body : parsed.bodies) {
+      double largest = 0.0;
+      for (const double r : body.radius) largest = std::max(largest, r);
+      thickness_.push_back(2.0 * largest);
+    }
     info.case_document = std::move(parsed.document);
   } catch (const io::CaseError& e) {
     const auto& problems = e.problems();
@@ -364,6 +370,11 @@ void Reader::read_events(Session& session) {
   }
 }
 
+// Round-off a writer may leave beyond the ranges (a foot point's parameters, a depth of
+// -1e-18): accepted, and clamped for u and v.
+constexpr double kParameterSlack = 1e-9;
+constexpr double kDepthSlack = 1e-6;  // m
+
 void Reader::read_samples(Session& session) {
   static constexpr const char* kColumns =
       "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
@@ -403,6 +414,21 @@ void Reader::read_samples(Session& session) {
       s.u = row.real(9, "u");
       s.v = row.real(10, "v");
       s.depth = row.real(11, "depth");
+      // In the format's ranges (docs/session-format.md): parameters in [0, 1], a press no
+      // deeper than the body is thick (a hostile value would send scoring out of bounds).
+      for (const auto& [value, name] : {std::pair{s.u, "u"}, std::pair{s.v, "v"}}) {
+        if (!(value >= -kParameterSlack && value <= 1.0 + kParameterSlack)) {
+          throw SessionError(file_, row.where(name), "outside [0, 1]: " + detail::exact_text(value));
+        }
+      }
+      s.u = std::clamp(s.u, 0.0, 1.0);
+      s.v = std::clamp(s.v, 0.0, 1.0);
+      const double deepest = thickness_[static_cast<std::size_t>(s.body)] * (1.0 + 1e-6) + kDepthSlack;
+      if (!(s.depth >= -kDepthSlack && s.depth <= deepest)) {
+        throw SessionError(file_, row.where("depth"),
+                           "outside [0, " + detail::exact_text(thickness_[static_cast<std::size_t>(s.body)]) +
+                               "] m, the body's thickness: " + detail::exact_text(s.depth));
+      }
     }
     s.buttons = static_cast<std::uint32_t>(row.integer(12, "buttons", 0, std::numeric_limits<std::uint32_t>::max()));
     s.overrun = row.integer(13, "overrun", 0, 1) != 0;
