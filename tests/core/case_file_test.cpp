@@ -124,6 +124,13 @@ const Rule kRules[] = {
     {"tumour not object", [](json& d) { d["tumors"] = json::array({1}); }, "/tumors/0", "object"},
     {"root not object", [](json& d) { d = json::array(); }, "/", "object"},
     {"id with newline", [](json& d) { d["bodies"][0]["id"] = "b\n0"; }, "/bodies/0/id", "control"},
+    // Not plausible bodies (CaseLimits: at most 2 m across, 0.5 m thick, points 0.5 m apart).
+    {"a body 198 m wide", [](json& d) { for (std::size_t k = 0; k < 12; ++k) d["bodies"][0]["medial"][k][0] = -99.0 + 66.0 * static_cast<double>(k % 4); },
+     "/bodies/0/medial", "not a plausible body: its skeleton spans 198 m along x"},
+    {"a point pulled 1.5 m out", [](json& d) { d["bodies"][0]["medial"][11] = {1.5, 0.02, 0.0}; },
+     "/bodies/0/medial/7", "not a plausible body: a neighbouring skeleton point"},
+    {"a body 0.6 m thick", [](json& d) { d["bodies"][0]["radius"][5] = 0.3; },
+     "/bodies/0/radius/5", "not a plausible body: radius 0.3 m makes it 0.6 m thick"},
     {"interior pole row", [](json& d) { for (std::size_t j = 0; j < 4; ++j) d["bodies"][0]["medial"][4 + j] = {0.015, 0.01, 0.0}; },
      "/bodies/0/medial/5", "coincides"},
 };

@@ -192,6 +192,50 @@ void check_boundary_radius(const mat::BodyGrid& g, const std::string& base, Vali
   }
 }
 
+// Bodies of absurd size or shape cost scoring and display work out of all proportion to
+// what a person palpates (a 200 m plane, a point pulled 50 m out): not a plausible body.
+void check_plausible(const mat::BodyGrid& g, const std::string& base, bool medial_ok, bool radius_ok, Validator& v) {
+  if (medial_ok) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      double lo = g.medial[0][c], hi = lo;
+      for (const auto& p : g.medial) {
+        lo = std::min(lo, p[c]);
+        hi = std::max(hi, p[c]);
+      }
+      if (hi - lo > L::kMaxBodyExtent) {
+        v.add(base + "/medial", "not a plausible body: its skeleton spans " + fmt(hi - lo) + " m along " +
+                                    std::string(1, static_cast<char>('x' + c)) + " (at most " +
+                                    fmt(L::kMaxBodyExtent) + " m)");
+      }
+    }
+    const auto spacing = [&](int i, int j, int i2, int j2) {
+      const auto& a = g.medial[static_cast<std::size_t>(i * g.cols + j)];
+      const auto& b = g.medial[static_cast<std::size_t>(i2 * g.cols + j2)];
+      return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    };
+    for (int i = 0; i < g.rows; ++i) {
+      for (int j = 0; j < g.cols; ++j) {
+        const double far = std::max(i + 1 < g.rows ? spacing(i, j, i + 1, j) : 0.0,
+                                    j + 1 < g.cols ? spacing(i, j, i, j + 1) : 0.0);
+        if (far > L::kMaxPointSpacing) {
+          v.add(base + "/medial/" + std::to_string(i * g.cols + j),
+                "not a plausible body: a neighbouring skeleton point is " + fmt(far) + " m away (at most " +
+                    fmt(L::kMaxPointSpacing) + " m)");
+          return;
+        }
+      }
+    }
+  }
+  if (radius_ok) {
+    const auto thickest = std::max_element(g.radius.begin(), g.radius.end());
+    if (thickest != g.radius.end() && 2.0 * *thickest > L::kMaxBodyThickness) {
+      v.add(base + "/radius/" + std::to_string(thickest - g.radius.begin()),
+            "not a plausible body: radius " + fmt(*thickest) + " m makes it " + fmt(2.0 * *thickest) +
+                " m thick (at most " + fmt(L::kMaxBodyThickness) + " m)");
+    }
+  }
+}
+
 // Coincident neighbours make the interpolation singular, except inside a pole: a boundary
 // row or column that collapses to one point as a whole (the grid's edge at a dome's apex,
 // where the radius is 0). An interior row cannot be a pole: the skeleton's normal would
@@ -318,6 +362,7 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   read_channel(body, base, "damping", n, {0.0, L::kMaxDamping, false, "N s/m"}, false, v, g.damping);
   read_channel(body, base, "mass", n, {0.0, L::kMaxMass, true, "kg"}, false, v, g.mass);
   if (radius_ok) check_boundary_radius(g, base, v);
+  check_plausible(g, base, medial_ok, radius_ok, v);
   if (medial_ok) check_coincident(g, base, v);
   if (v.count() == before) bodies.push_back(std::move(g));
 }

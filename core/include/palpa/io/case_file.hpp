@@ -57,6 +57,14 @@ struct CaseLimits {
   static constexpr double kMaxDamping = 1e7;       // N s/m
   static constexpr double kMaxMass = 1e3;          // kg
   static constexpr double kMaxTumourRadius = 1.0;  // m
+  /// A plausible body (docs/case-format.md, "Plausible bodies"): every anatomy and phantom
+  /// with margin. Its skeleton spans at most this along x, y and z (a whole adult torso is
+  /// under 0.7 m across)...
+  static constexpr double kMaxBodyExtent = 2.0;     // m
+  /// ...it is at most this thick (2 x its largest radius; an abdomen is under 0.35 m)...
+  static constexpr double kMaxBodyThickness = 0.5;  // m
+  /// ...and neighbouring skeleton points lie at most this far apart.
+  static constexpr double kMaxPointSpacing = 0.5;   // m
   static constexpr std::size_t kMaxProblems = 20;  // per file; the rest are counted
 };
 
