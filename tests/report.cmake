@@ -19,6 +19,8 @@ palpa_warnings(make_test_sessions)
 
 add_test(NAME cli.score COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_score_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
+add_test(NAME cli.hostile_sessions COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_hostile_sessions.py
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR})
 add_test(NAME cli.batch COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_batch_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
 

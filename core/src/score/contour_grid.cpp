@@ -72,6 +72,7 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
   const auto n = static_cast<std::size_t>(cells());
   centers_.resize(n);
   areas_.assign(n, 0.0);
+  cell_reach_.assign(n, 0.0);
   auto node = [&](int i, int j) -> const Vec3& { return node_top_[static_cast<std::size_t>(i * (cols_ + 1) + j)]; };
   Vec3 normal_sum = Vec3::Zero();  // area-weighted normal of the whole top contour
   for (int i = 0; i < rows_; ++i) {
@@ -84,6 +85,9 @@ ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>
       const Vec3 d1 = node(i + 1, j + 1) - node(i, j);
       const Vec3 d2 = node(i, j + 1) - node(i + 1, j);
       half_diagonal_ = std::max({half_diagonal_, 0.5 * d1.norm(), 0.5 * d2.norm()});
+      cell_reach_[k] = std::max({0.5 * d1.norm(), 0.5 * d2.norm(), (node(i, j) - centers_[k]).norm(),
+                                 (node(i + 1, j) - centers_[k]).norm(), (node(i, j + 1) - centers_[k]).norm(),
+                                 (node(i + 1, j + 1) - centers_[k]).norm()});
       normal_sum += 0.5 * d1.cross(d2);
       bool in_region = whole;
       for (const auto& p : parts) {

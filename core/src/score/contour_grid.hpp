@@ -48,6 +48,10 @@ class ContourGrid {
   double region_area() const { return region_area_; }
   /// Largest half-diagonal of a cell (m): a point in a cell lies this close to its centre.
   double half_diagonal() const { return half_diagonal_; }
+  /// Per cell: how far its corners lie from its centre (at least its half-diagonals), so a
+  /// flood over the cells a pad touches goes only through cells that reach the pad, however
+  /// large some other cell of the body is.
+  const std::vector<double>& cell_reach() const { return cell_reach_; }
   /// The top-down view: a point projected on the plane across the body's mean top-contour
   /// normal (m), where the search pattern's directions and strip positions are measured.
   Eigen::Vector2d top_down(const Vec3& p) const { return {p.dot(e1_), p.dot(e2_)}; }
@@ -60,6 +64,7 @@ class ContourGrid {
   std::vector<double> areas_;
   double region_area_ = 0.0;
   double half_diagonal_ = 0.0;
+  std::vector<double> cell_reach_;
   Vec3 e1_ = Vec3::UnitX(), e2_ = Vec3::UnitY();
 };
 

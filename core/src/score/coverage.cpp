@@ -20,11 +20,11 @@ void Coverage::stamp(const Vec3& top, int cell, std::uint8_t level, double pad_r
   const auto& centers = grid_->centers();
   const int rows = grid_->rows();
   const int cols = grid_->cols();
-  // Flood from the contact's cell through cells within reach: the pad's cells are
-  // connected through cells whose centre lies at most half a cell diagonal beyond it.
-  const double reach = pad_radius + grid_->half_diagonal();
+  // Flood from the contact's cell through the cells that reach the pad (their centre at
+  // most their own corner distance beyond it): they cover the pad's disc, so its cells are
+  // connected through them, and one stretched cell elsewhere does not widen every flood.
+  const auto& cell_reach = grid_->cell_reach();
   const double r2 = pad_radius * pad_radius;
-  const double reach2 = reach * reach;
   queue_.clear();
   queue_.push_back(cell);
   seen_[static_cast<std::size_t>(cell)] = stamp;
@@ -32,7 +32,8 @@ void Coverage::stamp(const Vec3& top, int cell, std::uint8_t level, double pad_r
     const int c = queue_[head];
     const auto k = static_cast<std::size_t>(c);
     const double d2 = (centers[k] - top).squaredNorm();
-    if (d2 > reach2) continue;
+    const double reach = pad_radius + cell_reach[k];
+    if (d2 > reach * reach) continue;
     if (d2 <= r2) {
       level_[k] = std::max(level_[k], level);
       if (last_stamp_[k] == 0 || last_stamp_[k] + 1 < stamp) visits_[k] = static_cast<std::uint8_t>(std::min(255, visits_[k] + 1));

@@ -11,6 +11,10 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kResample = 0.002;             // m between resampled path points
+// A step between two samples longer than this (a jump, or a hostile file alternating
+// between the ends of a body) is one segment, not length / kResample of them: the work
+// per sample stays bounded. At 1 kHz no hand moves this far in a tick.
+constexpr double kLongestResampledStep = 0.128;  // m, 64 resampled steps
 constexpr double kAxisTolerance = 20.0 * kPi / 180.0;  // a segment "along" the axis
 constexpr double kLongRun = 0.020;              // m: a straight run this long is a strip
 constexpr int kBins = 36;                       // 5 degree direction bins over [0, 180)
@@ -62,6 +66,12 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
       const PathPoint& a = path[k - 1];
       const PathPoint& b = path[k];
       const double seg = (b.top - a.top).norm();
+      if (seg > kLongestResampledStep) {
+        if (since > 0.0) emit(a.top, since);
+        emit(b.top, seg);  // the same direction as its pieces would have: the view is linear
+        since = 0.0;
+        continue;
+      }
       double done = 0.0;  // m of this segment already consumed
       while (since + (seg - done) >= kResample) {
         done += kResample - since;

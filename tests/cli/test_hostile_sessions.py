@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+"""Hostile session files stay bounded: each is refused or scored in under 1 s and 200 MB.
+
+The files are built here from a sample session (its meta rows) with Python's sqlite3:
+  - samples alternating between u = 0.02 and 0.98 on a body 2 m wide (the widest a case
+    may be): search-pattern resampling once emitted a segment per 2 mm of each jump;
+  - the same on a body 200 m wide: no longer a plausible body, refused by the reader;
+  - a body with one boundary skeleton point pulled 0.45 m out (its cells as large as a
+    plausible body allows), palpated 10 000 times: every coverage stamp once flooded the
+    whole grid; pulled 50 m out, it is refused.
+
+Run:
+    /usr/bin/python3 tests/cli/test_hostile_sessions.py --cli PATH/palpa-cli --repo REPO
+"""
+
+import argparse
+import json
+import os
+import resource
+import shutil
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+CLI = None
+REPO = None
+SECONDS = 1.0
+MEGABYTES = 200
+
+
+def flat_body(width, rows=5, cols=5, pulled=None):
+    """A flat body `width` m across on z = 0, 20 mm thick in the middle; `pulled` moves the
+    first boundary point that far along -x."""
+    medial, radius = [], []
+    for i in range(rows):
+        for j in range(cols):
+            x = -width / 2 + width * i / (rows - 1)
+            y = -width / 2 + width * j / (cols - 1)
+            medial.append([x, y, 0.0])
+            radius.append(0.0 if i in (0, rows - 1) or j in (0, cols - 1) else 0.01)
+    if pulled:
+        medial[0][0] -= pulled
+    return {"format": "palpa-case", "version": 1, "title": "hostile",
+            "bodies": [{"id": "b", "rows": rows, "cols": cols, "medial": medial, "radius": radius,
+                        "stiffness": [200.0] * (rows * cols)}]}
+
+
+def session_with(path, case, samples):
+    """A copy of the light sample session with `case` and `samples` (t, u, v) in contact."""
+    shutil.copy(os.path.join(REPO, "data", "sessions", "light.palpa"), path)
+    db = sqlite3.connect(path)
+    db.execute("UPDATE meta SET value = ? WHERE key = 'case'", (json.dumps(case),))
+    db.execute("DELETE FROM samples")
+    db.executemany("INSERT INTO samples VALUES (?, ?, 0, 0, 0.01, 0, 0, 1, 0, ?, ?, 0.005, 0, 0, 0)",
+                   [(k, t, u, v) for k, (t, u, v) in enumerate(samples)])
+    db.execute("UPDATE events SET t = ? WHERE kind = 'end'", (samples[-1][0] if samples else 0.0,))
+    db.commit()
+    db.execute("VACUUM")
+    db.close()
+
+
+def timed(args):
+    """(result, seconds, the largest resident size of any child so far in MB)."""
+    started = time.monotonic()
+    res = subprocess.run([CLI] + args, capture_output=True, text=True, timeout=60)
+    seconds = time.monotonic() - started
+    return res, seconds, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0
+
+
+class HostileSessions(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="palpa_hostile_")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def assertBounded(self, seconds, megabytes, what):
+        print("%s: %.2f s, %.0f MB" % (what, seconds, megabytes), file=sys.stderr)
+        self.assertLess(seconds, SECONDS, "%s took %.2f s" % (what, seconds))
+        self.assertLess(megabytes, MEGABYTES, "%s took %.0f MB" % (what, megabytes))
+
+    def test_jumps_across_the_widest_body_score_quickly(self):
+        path = os.path.join(self.tmp.name, "jumps.palpa")
+        session_with(path, flat_body(2.0), [(k * 1e-3, 0.02 if k % 2 else 0.98, 0.5) for k in range(2000)])
+        res, seconds, mb = timed(["score", path])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertBounded(seconds, mb, "2000 jumps of 1.9 m")
+
+    def test_a_body_two_hundred_metres_wide_is_refused(self):
+        path = os.path.join(self.tmp.name, "wide.palpa")
+        session_with(path, flat_body(200.0), [(k * 1e-3, 0.02 if k % 2 else 0.98, 0.5) for k in range(100)])
+        res, seconds, mb = timed(["score", path])
+        self.assertEqual(res.returncode, 2, res.stdout)
+        self.assertIn("not a plausible body", res.stderr)
+        self.assertBounded(seconds, mb, "the 200 m body")
+
+    def test_a_stretched_boundary_point_does_not_flood_every_stamp(self):
+        samples = [(k * 1e-3, 0.3 + 0.4 * ((k * 7919) % 1000) / 1000.0, 0.3 + 0.4 * ((k * 104729) % 997) / 997.0)
+                   for k in range(10000)]
+        path = os.path.join(self.tmp.name, "stretched.palpa")
+        session_with(path, flat_body(0.1, pulled=0.45), samples)
+        res, seconds, mb = timed(["score", path])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertBounded(seconds, mb, "10 000 stamps beside a cell stretched 0.45 m")
+        # Pulled 50 m out (9.2 s and 1.8 GB before): not a plausible body.
+        far = os.path.join(self.tmp.name, "spike.palpa")
+        session_with(far, flat_body(0.1, pulled=50.0), samples)
+        res, seconds, mb = timed(["score", far])
+        self.assertEqual(res.returncode, 2, res.stdout)
+        self.assertIn("not a plausible body", res.stderr)
+        self.assertBounded(seconds, mb, "the 50 m spike")
+
+
+def main():
+    global CLI, REPO
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--cli", required=True)
+    ap.add_argument("--repo", required=True)
+    args, rest = ap.parse_known_args()
+    CLI = os.path.abspath(args.cli)
+    REPO = os.path.abspath(args.repo)
+    prog = unittest.main(argv=[sys.argv[0]] + rest, exit=False)
+    return 0 if prog.result.wasSuccessful() else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
