@@ -234,6 +234,23 @@ TEST_F(SessionCorrupt, OnlyTheDocumentedSchemaIsReadNotWhatTheFileDefines) {
   expect_refused(retyped, "its schema has column events.colour TEXT");
 }
 
+TEST_F(SessionCorrupt, MoreSamplesThanASessionMayHoldAreRefusedBeforeReadingThem) {
+  const auto path = good("long.palpa");  // 3000 samples
+  ReadOptions options;
+  EXPECT_EQ(options.max_samples, 72'000'000);  // 20 h at 1 kHz
+  options.max_samples = 2999;
+  try {
+    read_session(path, options);
+    ADD_FAILURE() << "read";
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("samples: 3000 rows: more than a session may hold (2999;"),
+              std::string::npos)
+        << e.what();
+  }
+  options.max_samples = 3000;
+  EXPECT_EQ(read_session(path, options).samples.size(), 3000u);
+}
+
 TEST_F(SessionCorrupt, ALiveSessionCopiedWithoutItsWalIsNamedSo) {
   const auto live = dir_ / "live.palpa";
   SessionWriter writer(live, test::flat_case_info());

@@ -49,7 +49,7 @@ class Reader {
   bool has_table(const char* name);
   void read_meta(Session& session);
   void read_events(Session& session);
-  void read_samples(Session& session);
+  void read_samples(Session& session, std::int64_t max_samples);
 
   detail::Statement prepare(const std::string& where, const char* sql) {
     try {
@@ -375,13 +375,17 @@ void Reader::read_events(Session& session) {
 constexpr double kParameterSlack = 1e-9;
 constexpr double kDepthSlack = 1e-6;  // m
 
-void Reader::read_samples(Session& session) {
+void Reader::read_samples(Session& session, std::int64_t max_samples) {
   static constexpr const char* kColumns =
       "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
   if (auto count = prepare("samples", "SELECT count(*) FROM samples"); step(count, "samples")) {
     // Capped (about 4 million ticks, 70 minutes at 1 kHz): a hostile count must not make
     // the reservation itself fail; a longer session grows the vector as it reads.
     const auto rows = std::max<sqlite3_int64>(0, sqlite3_column_int64(count.get(), 0));
+    if (rows > max_samples) {
+      fail("samples", std::to_string(rows) + " rows: more than a session may hold (" + std::to_string(max_samples) +
+                          "; 72000000 is 20 hours at 1 kHz)");
+    }
     session.samples.reserve(static_cast<std::size_t>(std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22)));
   }
   auto query = prepare("samples", (std::string(kColumns) + " ORDER BY tick").c_str());
@@ -452,7 +456,7 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
   read_meta(session);
   read_events(session);
   if (options.samples) {
-    read_samples(session);
+    read_samples(session, options.max_samples);
   } else {
     // Still check the table has the columns a reader needs.
     prepare("samples",

@@ -2,6 +2,7 @@
 // Reads session files (docs/session-format.md) read-only. A session cut short by a crash
 // is read up to its last commit (Session::complete is false). Anything unreadable or
 // inconsistent throws SessionError naming the file and the place.
+#include <cstdint>
 #include <filesystem>
 
 #include "palpa/session/session.hpp"
@@ -10,6 +11,9 @@ namespace palpa::session {
 
 struct ReadOptions {
   bool samples = true;  ///< false: info, events and stats only (fast listing)
+  /// A session with more samples is refused before a row is read: 20 hours at 1 kHz, the
+  /// longest Palpa reads (96 bytes each in memory, about 7 GB).
+  std::int64_t max_samples = 72'000'000;
 };
 
 /// Throws SessionError: not a file, not SQLite, not a Palpa session, a newer format
