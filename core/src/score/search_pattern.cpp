@@ -14,7 +14,7 @@ constexpr double kResample = 0.002;             // m between resampled path poin
 // A step between two samples longer than this (a jump, or a hostile file alternating
 // between the ends of a body) is one segment, not length / kResample of them: the work
 // per sample stays bounded. At 1 kHz no hand moves this far in a tick.
-constexpr double kLongestResampledStep = 0.128;  // m, 64 resampled steps
+constexpr double kLongestResampledStep = 0.004;  // m, two resampled steps (4 m/s at 1 kHz)
 constexpr double kAxisTolerance = 20.0 * kPi / 180.0;  // a segment "along" the axis
 constexpr double kLongRun = 0.020;              // m: a straight run this long is a strip
 constexpr int kBins = 36;                       // 5 degree direction bins over [0, 180)
