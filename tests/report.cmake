@@ -19,8 +19,14 @@ palpa_warnings(make_test_sessions)
 
 add_test(NAME cli.score COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_score_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
+# Under the sanitizers a command runs several times slower and holds more memory (shadow
+# memory, quarantine): the hostile files' limits scale with --sanitized.
+set(hostile_sanitized "")
+if(PALPA_SANITIZE)
+  set(hostile_sanitized --sanitized)
+endif()
 add_test(NAME cli.hostile_sessions COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_hostile_sessions.py
-         --cli ${cli} --repo ${PROJECT_SOURCE_DIR})
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR} ${hostile_sanitized})
 add_test(NAME cli.batch COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_batch_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
 
