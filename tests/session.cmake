@@ -3,6 +3,7 @@ find_package(SQLite3 REQUIRED)  # the tests damage session files on purpose, thr
 add_executable(session_tests
   core/session_roundtrip_test.cpp
   core/session_crash_test.cpp
+  core/session_claim_test.cpp
   core/session_corrupt_test.cpp
   core/session_recorder_test.cpp
   core/session_snapshot_test.cpp

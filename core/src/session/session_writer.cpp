@@ -1,10 +1,6 @@
 #include "palpa/session/session_writer.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <array>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -16,6 +12,7 @@
 #include <utility>
 
 #include "checks.hpp"
+#include "file_claim.hpp"
 #include "palpa/io/case_file.hpp"
 #include "sqlite_util.hpp"
 
@@ -91,41 +88,6 @@ CheckedInfo validate(const std::string& file, const SessionInfo& info) {
   return checked;
 }
 
-// Creates the file itself (O_EXCL), so that an existing session is refused without a race
-// and SQLite starts from an empty file.
-void create_exclusive(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::error_code ec;
-  for (const char* suffix : {"-wal", "-journal"}) {
-    // A stale journal beside a new file would be replayed into it.
-    auto side = path;
-    side += suffix;
-    if (std::filesystem::symlink_status(side, ec).type() != std::filesystem::file_type::not_found && !ec) {
-      std::string reason = "a leftover ";
-      reason += side.filename().string();
-      reason += " lies beside it (from an earlier session of that name); move it away first";
-      throw SessionError(file, "file", reason);
-    }
-  }
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    const int error = errno;
-    if (error == EEXIST) {
-      throw SessionError(file, "file", "already exists; recorded sessions are never overwritten, choose a new name");
-    }
-    if (error == ENOENT) {
-      std::string reason = "the folder ";
-      reason += path.parent_path().empty() ? std::string(".") : path.parent_path().string();
-      reason += " does not exist";
-      throw SessionError(file, "file", reason);
-    }
-    std::string reason = "cannot create: ";
-    reason += std::strerror(error);
-    throw SessionError(file, "file", reason);
-  }
-  ::close(fd);
-}
-
 }  // namespace
 
 namespace {
@@ -135,29 +97,24 @@ struct CloseDb {
 };
 using DbOwner = std::unique_ptr<sqlite3, CloseDb>;
 
-/// The file's schema and meta, committed; returns the open connection and its two insert
-/// statements. Any failure throws (SessionError or whatever SQLite/JSON code throws) and
-/// leaves nothing open.
-struct Opened {
-  DbOwner db;
-  detail::Statement insert_sample, insert_event;
-};
-
-Opened open_new(const std::string& file, const SessionInfo& info, const CheckedInfo& checked) {
-  Opened out;
+DbOwner open_connection(const std::filesystem::path& where, const std::string& file) {
   sqlite3* raw = nullptr;
-  const int rc = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr);
-  out.db.reset(raw);  // owned even when the open failed (SQLite allocates a handle then)
+  const int rc = sqlite3_open_v2(where.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr);
+  DbOwner db(raw);  // owned even when the open failed (SQLite allocates a handle then)
   if (rc != SQLITE_OK) throw SessionError(file, "file", raw != nullptr ? sqlite3_errmsg(raw) : "cannot open");
-  sqlite3* db = out.db.get();
-  sqlite3_extended_result_codes(db, 1);
-  // Another program reading the live file (a viewer, Python) holds locks only briefly.
-  sqlite3_busy_timeout(db, 200);
-  if (detail::query_text(db, "PRAGMA journal_mode=WAL") != "wal") {
-    throw SessionError(file, "file", "cannot use write-ahead logging here");
-  }
+  sqlite3_extended_result_codes(raw, 1);
+  return db;
+}
+
+/// Writes the schema and the meta of `info` into the new, empty file at `building`, which no
+/// other program knows of yet, commits them with a rollback journal and closes: the file is
+/// a complete (empty) session before it gets its name. Messages name `file`, the final name.
+void write_header(const std::filesystem::path& building, const std::string& file, const SessionInfo& info,
+                  const CheckedInfo& checked) {
+  const DbOwner owner = open_connection(building, file);
+  sqlite3* db = owner.get();
   std::string error;
-  std::string schema = "PRAGMA synchronous=NORMAL; BEGIN; PRAGMA application_id=";
+  std::string schema = "PRAGMA synchronous=FULL; BEGIN; PRAGMA application_id=";
   schema += std::to_string(detail::kApplicationId);
   schema += "; PRAGMA user_version=";
   schema += std::to_string(kFormatVersion);
@@ -185,14 +142,80 @@ Opened open_new(const std::string& file, const SessionInfo& info, const CheckedI
   put("case", checked.case_text);
   if (info.seed) put("seed", std::to_string(*info.seed));
   put("extra", checked.extra_text);
+  meta = detail::Statement();  // finalized before the connection closes
+  if (detail::exec(db, "COMMIT", error) != SQLITE_OK) throw SessionError(file, "file", error);
+  // Into write-ahead logging here, not after the file has its name: the switch rewrites the
+  // header through a rollback journal, and a kill during it would leave a hot journal that
+  // a read-only reader cannot roll back. Closing this (last) connection removes -wal, -shm.
+  if (detail::query_text(db, "PRAGMA journal_mode=WAL") != "wal") {
+    throw SessionError(file, "file", "cannot use write-ahead logging here");
+  }
+}
 
+/// The published session opened for recording: write-ahead logging, the two insert
+/// statements, the first transaction open.
+struct Opened {
+  DbOwner db;
+  detail::Statement insert_sample, insert_event;
+};
+
+Opened open_for_recording(const std::string& file) {
+  Opened out;
+  out.db = open_connection(file, file);
+  sqlite3* db = out.db.get();
+  // Another program reading the live file (a viewer, Python) holds locks only briefly.
+  sqlite3_busy_timeout(db, 200);
+  if (detail::query_text(db, "PRAGMA journal_mode=WAL") != "wal") {
+    throw SessionError(file, "file", "cannot use write-ahead logging here");
+  }
+  std::string error;
+  if (detail::exec(db, "PRAGMA synchronous=NORMAL", error) != SQLITE_OK) throw SessionError(file, "file", error);
   out.insert_sample = detail::Statement(db,
                                         "INSERT INTO samples(tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, "
                                         "overrun, fault) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   out.insert_event =
       detail::Statement(db, "INSERT INTO events(t, kind, mark, x, y, z, note) VALUES(?, ?, ?, ?, ?, ?, ?)");
-  if (detail::exec(db, "COMMIT; BEGIN", error) != SQLITE_OK) throw SessionError(file, "file", error);
+  if (detail::exec(db, "BEGIN", error) != SQLITE_OK) throw SessionError(file, "file", error);
   return out;
+}
+
+void remove_with_journals(const std::filesystem::path& path) {
+  std::error_code ec;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+    auto p = path;
+    p += suffix;
+    std::filesystem::remove(p, ec);
+  }
+}
+
+/// Inside a catch block: the exception in flight as a SessionError naming `file`.
+[[noreturn]] void rethrow_as_session_error(const std::string& file) {
+  try {
+    throw;
+  } catch (const SessionError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SessionError(file, "file", e.what());
+  } catch (...) {
+    throw SessionError(file, "file", "unknown error while creating the session");
+  }
+}
+
+/// Everything into the main file, then back to a rollback journal, so that the session is
+/// one self-contained file that can be copied and opened read-only anywhere. With another
+/// program holding the file open, the checkpoint stops short and the switch needs an
+/// exclusive lock it cannot have: false after `attempts` tries, with the reason in `error`.
+bool leave_write_ahead_logging(sqlite3* db, int attempts, std::string& error) {
+  for (int attempt = 0; attempt < attempts; ++attempt) {
+    if (attempt > 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (detail::exec(db, "PRAGMA wal_checkpoint(TRUNCATE)", error) != SQLITE_OK) continue;
+    try {
+      if (detail::query_text(db, "PRAGMA journal_mode=DELETE") == "delete") return true;
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -200,39 +223,38 @@ Opened open_new(const std::string& file, const SessionInfo& info, const CheckedI
 SessionWriter::SessionWriter(const std::filesystem::path& path, const SessionInfo& info) : path_(path) {
   const std::string file = path.string();
   const CheckedInfo checked = validate(file, info);
-  create_exclusive(path);
+  detail::refuse_taken_name(path);
+  detail::remove_abandoned_creations(path);
+  const std::filesystem::path building = detail::creating_path(path);
+  detail::create_exclusive(building);
   try {
-    Opened opened = open_new(file, info, checked);
+    write_header(building, file, info, checked);
+    detail::publish(building, path);
+  } catch (...) {
+    remove_with_journals(building);  // ours alone: nobody else knows its name
+    rethrow_as_session_error(file);
+  }
+  try {
+    Opened opened = open_for_recording(file);
     // Statements first: they must be finalized before the connection closes (close()).
     insert_sample_ = opened.insert_sample.release();
     insert_event_ = opened.insert_event.release();
     db_ = opened.db.release();
     bodies_ = checked.bodies;
   } catch (...) {
-    // Everything opened is closed by now. The file is ours (created with O_EXCL just now)
-    // and holds nothing yet: leave no half-made session behind.
-    std::error_code ec;
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
-      auto p = path;
-      p += suffix;
-      std::filesystem::remove(p, ec);
-    }
-    try {
-      throw;
-    } catch (const SessionError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw SessionError(file, "file", e.what());
-    } catch (...) {
-      throw SessionError(file, "file", "unknown error while creating the session");
-    }
+    // Everything opened is closed by now. The file is ours (published just now) and holds
+    // no samples yet: leave no half-made session behind.
+    remove_with_journals(path);
+    rethrow_as_session_error(file);
   }
 }
 
 SessionWriter::~SessionWriter() {
   if (db_ != nullptr && sqlite3_get_autocommit(db_) == 0) {
     std::string error;
-    detail::exec(db_, "COMMIT", error);  // best effort: a destructor cannot report
+    // Best effort: a destructor cannot report. A session cut short this way is still made
+    // one self-contained file when no other program has it open.
+    if (detail::exec(db_, "COMMIT", error) == SQLITE_OK) leave_write_ahead_logging(db_, 1, error);
   }
   close();
 }
@@ -433,22 +455,9 @@ void SessionWriter::finish() {
   sqlite3_finalize(insert_event_);
   insert_sample_ = nullptr;
   insert_event_ = nullptr;
-  // Everything is committed. Now, if no other program has the file open: everything into
-  // the main file, then back to a rollback journal, so a finished session is one
-  // self-contained file that can be copied and opened read-only anywhere. With a reader
-  // open, the checkpoint stops short and the switch needs an exclusive lock it cannot
-  // have: the session stays in WAL mode, complete, which is a warning and not an error.
-  bool single_file = false;
-  for (int attempt = 0; attempt < 3 && !single_file; ++attempt) {
-    if (attempt > 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (detail::exec(db_, "PRAGMA wal_checkpoint(TRUNCATE)", error) != SQLITE_OK) continue;
-    try {
-      single_file = detail::query_text(db_, "PRAGMA journal_mode=DELETE") == "delete";
-    } catch (const std::runtime_error& e) {
-      error = e.what();
-    }
-  }
-  if (!single_file) {
+  // Everything is committed. With a reader open the session stays in WAL mode, complete,
+  // which is a warning and not an error.
+  if (!leave_write_ahead_logging(db_, 3, error)) {
     warning_ = file;
     warning_ += ": finish: left in write-ahead-log mode (keep its -wal and -shm beside it): ";
     warning_ += "another program has the session open";
