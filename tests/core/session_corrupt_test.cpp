@@ -253,7 +253,7 @@ TEST_F(SessionCorrupt, ALiveSessionCopiedWithoutItsWalIsNamedSo) {
   std::filesystem::create_directory(dir_ / "copy");
   const auto copy = dir_ / "copy" / "live.palpa";
   std::filesystem::copy_file(live, copy);  // the .palpa alone, as a careless copy would
-  const std::string reason = "file: recorded in WAL mode: its -wal/-shm files are missing or the folder is not writable";
+  const std::string reason = "file: recorded in WAL mode and holds no samples without its -wal";
   expect_refused(copy, reason);
   expect_refused(copy, reason);  // again, now that SQLite has left an empty -wal beside it
   EXPECT_EQ(read_session(live).samples.size(), 100u);  // the original, with its -wal, reads

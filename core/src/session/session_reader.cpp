@@ -12,6 +12,7 @@
 
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/json_text.hpp"
+#include "hot_journal.hpp"
 #include "sqlite_util.hpp"
 
 namespace palpa::session {
@@ -43,6 +44,7 @@ class Reader {
   void check_file(const std::filesystem::path& path);
   [[noreturn]] void fail_wal_missing() const;
   bool wal_files_missing() const;
+  void refuse_empty_without_wal(const Session& session);
   void open();
   void check_identity();
   void check_schema();
@@ -69,6 +71,7 @@ class Reader {
   std::string file_;
   bool wal_header_ = false;  // the file header says WAL mode: it needs its -wal and -shm
   bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
+  detail::JournalBeside journal_ = detail::JournalBeside::None;
   sqlite3* db_ = nullptr;
   std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
   std::vector<double> thickness_;  // m, per body: 2 x its largest radius, the deepest press it has
@@ -82,6 +85,19 @@ void Reader::fail_wal_missing() const {
 // keeps part of its data in FILE-wal; without it (or without FILE-shm where none can be
 // made) SQLite sees an empty or unopenable database.
 bool Reader::wal_files_missing() const { return wal_header_ && wal_absent_; }
+
+// The header and case of a session are in its main file from the start; its samples are in
+// the -wal until a checkpoint. So a session in WAL mode that was missing its -wal and has
+// no End and no samples is a copy made without its -wal (or a recording stopped before its
+// first commit): say so rather than read it as a session in which nothing happened.
+void Reader::refuse_empty_without_wal(const Session& session) {
+  if (!wal_files_missing() || session.complete) return;
+  auto any = prepare("samples", "SELECT EXISTS(SELECT 1 FROM samples)");
+  if (step(any, "samples") && sqlite3_column_int(any.get(), 0) != 0) return;
+  fail("file",
+       "recorded in WAL mode and holds no samples without its -wal: keep its -wal and -shm beside it "
+       "when copying (or the recording stopped before its first commit)");
+}
 
 void Reader::fail_sqlite(const std::string& where, int rc) const {
   const std::string message = db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
@@ -119,12 +135,23 @@ void Reader::check_file(const std::filesystem::path& path) {
   std::error_code wal_ec;
   const auto wal_size = std::filesystem::file_size(file_ + "-wal", wal_ec);
   wal_absent_ = wal_ec || wal_size == 0;
+  journal_ = detail::journal_beside(path);
+  if (journal_ == detail::JournalBeside::Transaction) {
+    fail("file", "a write was interrupted and its " + path.filename().string() +
+                     "-journal lies beside it; Palpa reads sessions without changing them and cannot roll it back "
+                     "(opening the file once with the sqlite3 tool does)");
+  }
 }
 
 void Reader::open() {
   // Read-only: a session is evidence and is never changed by reading it. A session cut
   // short still has its -wal (and -shm) beside it; SQLite reads the committed part of it.
-  const int rc = sqlite3_open_v2(file_.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
+  // After a kill while finish() switched out of write-ahead logging, every page is whole in
+  // the main file and the journal holds page 1 alone (hot_journal.hpp): read it as it is.
+  const bool as_is = journal_ == detail::JournalBeside::HeaderSwitchOnly;
+  const std::string name = as_is ? detail::sqlite_uri(file_, "immutable=1") : file_;
+  const int flags = SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX | (as_is ? SQLITE_OPEN_URI : 0);
+  const int rc = sqlite3_open_v2(name.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) fail_sqlite("file", rc);
   sqlite3_extended_result_codes(db_, 1);
   sqlite3_busy_timeout(db_, 2000);  // a writer mid-commit: wait briefly, never hang
@@ -455,6 +482,7 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
   Session session;
   read_meta(session);
   read_events(session);
+  refuse_empty_without_wal(session);
   if (options.samples) {
     read_samples(session, options.max_samples);
   } else {
