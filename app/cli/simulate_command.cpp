@@ -27,6 +27,7 @@
 #include "palpa/session/session_writer.hpp"
 #include "palpa/version.hpp"
 #include "simulate_output.hpp"
+#include "timed_points.hpp"
 
 namespace palpa::cli {
 namespace {
@@ -49,24 +50,10 @@ struct SimulateOptions {
   std::string falcon_firmware;
 };
 
-// Reads a `t,x,y,z` file: times must increase (trajectory) or not decrease (marks).
-bool read_timed_points(const std::string& path, bool strictly_increasing, engine::Trajectory& out) {
+// Reads a `t,x,y,z` file; false (after printing why) when it cannot be used.
+bool read_timed_points(const std::string& path, TimeOrder order, engine::Trajectory& out) {
   try {
-    const auto table = io::read_numeric_csv(path, {"t", "x", "y", "z"});
-    for (std::size_t r = 0; r < table.rows.size(); ++r) {
-      const auto& row = table.rows[r];
-      if (row[0] < 0.0 || (!out.t.empty() && (strictly_increasing ? row[0] <= out.t.back() : row[0] < out.t.back()))) {
-        print_error(path + ": line " + std::to_string(table.line_numbers[r]) + ": column t: times must " +
-                    (strictly_increasing ? "increase" : "not decrease") + " and be >= 0");
-        return false;
-      }
-      out.t.push_back(row[0]);
-      out.position.emplace_back(row[1], row[2], row[3]);
-    }
-    if (strictly_increasing && out.t.size() < 2) {
-      print_error(path + ": a trajectory needs at least two rows");
-      return false;
-    }
+    out = timed_points(io::read_numeric_csv(path, {"t", "x", "y", "z"}), path, order);
     return true;
   } catch (const io::CsvError& e) {
     print_error(e.what());
@@ -104,7 +91,7 @@ int run_simulate(const SimulateOptions& o) {
     return kBadInput;
   }
   engine::Trajectory trajectory;
-  if (!o.trajectory_path.empty() && !read_timed_points(o.trajectory_path, true, trajectory)) return kBadInput;
+  if (!o.trajectory_path.empty() && !read_timed_points(o.trajectory_path, TimeOrder::Increasing, trajectory)) return kBadInput;
   // A device instead of the trajectory: a replayed session (its duration) or a live one
   // (--realtime for --duration seconds, its workspace over the first body).
   std::unique_ptr<engine::Device> chosen;
@@ -142,7 +129,7 @@ int run_simulate(const SimulateOptions& o) {
     }
   }
   engine::Trajectory marks;
-  if (!o.marks_path.empty() && !read_timed_points(o.marks_path, false, marks)) return kBadInput;
+  if (!o.marks_path.empty() && !read_timed_points(o.marks_path, TimeOrder::NotDecreasing, marks)) return kBadInput;
 
   engine::EngineOptions options;
   options.rate_hz = o.rate;

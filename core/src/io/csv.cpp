@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <istream>
 
 namespace palpa::io {
 namespace {
@@ -44,6 +45,10 @@ NumericTable read_numeric_csv(const std::filesystem::path& path, const std::vect
   }
   std::ifstream in(path);
   if (!in) throw CsvError(name + ": cannot open (not readable)");
+  return parse_numeric_csv(in, name, header);
+}
+
+NumericTable parse_numeric_csv(std::istream& in, const std::string& name, const std::vector<std::string>& header) {
   NumericTable table;
   table.columns = header;
   std::string line;

@@ -2,6 +2,7 @@
 // Numeric CSV files with a fixed header (probe points, parameter lists, trajectories).
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,5 +27,7 @@ struct NumericTable {
 /// Reads a CSV whose first line is exactly `header` (e.g. {"u", "v"}) and whose other
 /// non-blank lines hold that many finite numbers. CRLF line ends are accepted.
 NumericTable read_numeric_csv(const std::filesystem::path& path, const std::vector<std::string>& header);
+/// The same from a stream; messages name `name` in place of the file.
+NumericTable parse_numeric_csv(std::istream& in, const std::string& name, const std::vector<std::string>& header);
 
 }  // namespace palpa::io
