@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <numbers>
 #include <numeric>
@@ -217,7 +218,8 @@ cv::Scalar level_colour(int level) {
 }
 
 TopView map_view(const score::Score& score) {
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
   auto add = [&](double x, double y, double r) {
     if (!std::isfinite(x) || !std::isfinite(y)) return;
     x0 = std::min(x0, x - r);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "palpa/io/json_text.hpp"
@@ -386,7 +387,8 @@ PresetParams CaseDraft::preset_or_nearest() const {
   const auto limits = preset_limits(Preset::Breast);
   const auto within = [](double x, const double range[2]) { return std::clamp(x, range[0], range[1]); };
   if (body.contains("medial") && body["medial"].is_array() && !body["medial"].empty()) {
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
     for (const auto& m : body["medial"]) {
       if (!m.is_array() || m.size() < 2 || !m[0].is_number() || !m[1].is_number()) continue;
       for (int k = 0; k < 2; ++k) {

@@ -20,7 +20,7 @@ constexpr double kEdgeSlack = 1e-6;  // of a triangle's barycentric range: far b
 
 Vec3 vertex(const std::vector<float>& xyz, std::uint32_t index) {
   const std::size_t at = std::size_t{index} * 3;
-  return {double{xyz[at]}, double{xyz[at + 1]}, double{xyz[at + 2]}};
+  return {static_cast<double>(xyz[at]), static_cast<double>(xyz[at + 1]), static_cast<double>(xyz[at + 2])};
 }
 
 }  // namespace
