@@ -14,6 +14,7 @@ packages=(
   pkg-config libhidapi-dev libusb-1.0-0-dev
   desktop-file-utils  # packaging test: desktop-file-validate on the menu entry (dpkg-dev comes with build-essential)
   gmsh calculix-ccx python3-numpy python3-scipy  # the finite-element reference (tools/fem) and its tests
+  clang libclang-rt-14-dev  # the fuzz targets: libFuzzer with ASan + UBSan (scripts/fuzz.sh)
 )
 
 missing=()
