@@ -16,6 +16,7 @@ Run:
 import argparse
 import json
 import os
+import random
 import resource
 import shutil
 import sqlite3
@@ -123,22 +124,32 @@ class HostileSessions(unittest.TestCase):
 
 
 class LongSessions(unittest.TestCase):
-    """Memory per sample is bounded: a million samples in contact (16 minutes at 1 kHz, a
-    slow raster over the body) score in under 300 MB."""
+    """Memory per sample is bounded: a million samples in contact (16 minutes at 1 kHz)
+    score in under 300 MB, whether the finger rasters slowly over the body or jumps to a
+    random point of it every tick (two search-pattern segments a sample)."""
 
-    def test_a_million_samples_score_in_under_300_mb(self):
+    def score_a_million(self, what, sample):
         def samples():  # generated as written: this process stays small, and so its forked child
             for k in range(1000000):
-                along = (k * 0.0005) % 2.0  # 0.05 mm a tick along u, back and forth
-                row = int(k * 0.0005 / 2.0)
-                yield k * 1e-3, 0.2 + 0.6 * (along if along < 1.0 else 2.0 - along), 0.2 + (row * 0.03) % 0.6
+                yield (k * 1e-3,) + sample(k)
         with tempfile.TemporaryDirectory(prefix="palpa_long_") as d:
             path = os.path.join(d, "million.palpa")
             session_with(path, flat_body(0.1), samples())
             res, seconds, mb = timed(["score", path])
-            print("a million samples: %.2f s of CPU, %.0f MB" % (seconds, mb), file=sys.stderr)
+            print("a million samples, %s: %.2f s of CPU, %.0f MB" % (what, seconds, mb), file=sys.stderr)
             self.assertEqual(res.returncode, 0, res.stderr)
             self.assertLess(mb, LONG_MEGABYTES)
+
+    def test_a_million_samples_score_in_under_300_mb(self):
+        def raster(k):
+            along = (k * 0.0005) % 2.0  # 0.05 mm a tick along u, back and forth
+            row = int(k * 0.0005 / 2.0)
+            return 0.2 + 0.6 * (along if along < 1.0 else 2.0 - along), 0.2 + (row * 0.03) % 0.6
+        self.score_a_million("a slow raster", raster)
+
+    def test_a_million_random_jumps_score_in_under_300_mb(self):
+        rnd = random.Random(7)
+        self.score_a_million("a random jump every tick", lambda k: (rnd.uniform(0.02, 0.98), rnd.uniform(0.02, 0.98)))
 
 
 def main():

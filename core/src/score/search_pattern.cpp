@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace palpa::score::detail {
 namespace {
@@ -33,10 +34,12 @@ double axial_difference(double a, double b) {
   return std::min(d, kPi - d);
 }
 
-// Resamples every piece of the path every kResample m of top-contour length and returns
-// the segments between consecutive resampled points.
-std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids) {
-  std::vector<Segment> out;
+// Resamples every piece of the path every kResample m of top-contour length and hands
+// each segment between consecutive resampled points to `visit`, in path order. The
+// segments are not kept: the passes over them resample again, so that memory stays that of
+// the path (a hostile session can have two segments per sample).
+template <class Visit>
+void for_each_segment(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids, Visit&& visit) {
   std::size_t begin = 0;
   while (begin < path.size()) {
     std::size_t end = begin + 1;
@@ -57,8 +60,8 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
       double angle = std::atan2(dy, dx);
       if (angle < 0) angle += kPi;
       if (angle >= kPi) angle -= kPi;
-      out.push_back({path[begin].body, path[begin].piece, angle, length, 0.5 * (m[0] + last[0]),
-                     0.5 * (m[1] + last[1]), 0.5 * (top + last_top)});
+      visit(Segment{path[begin].body, path[begin].piece, angle, length, 0.5 * (m[0] + last[0]),
+                    0.5 * (m[1] + last[1]), 0.5 * (top + last_top)});
       last = m;
       last_top = top;
     };
@@ -84,7 +87,6 @@ std::vector<Segment> resample(const std::vector<PathPoint>& path, const std::vec
     if (since > 0.0) emit(path[end - 1].top, since);
     begin = end;
   }
-  return out;
 }
 
 double median(std::vector<double> x) {
@@ -109,13 +111,12 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
   if (out.path_length_m <= 0.0) return out;
   out.revisit_fraction = revisited / out.path_length_m;
 
-  const std::vector<Segment> segments = resample(path, grids);
   std::array<double, kBins> histogram{};
   double total = 0.0;
-  for (const auto& s : segments) {
+  for_each_segment(path, grids, [&](const Segment& s) {
     histogram[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(s.angle / kPi * kBins)))] += s.length;
     total += s.length;
-  }
+  });
   if (total <= 0.0) return out;
   // The dominant axis: the 45 degree window (+-20 degrees and a half bin) that holds the
   // most path, refined by the axial mean of the segments in it (angles doubled).
@@ -131,17 +132,12 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
   }
   const double window_center = (best + 0.5) * kPi / kBins;
   double c2 = 0.0, s2 = 0.0;
-  for (const auto& s : segments) {
-    if (axial_difference(s.angle, window_center) > kAxisTolerance + 0.5 * kPi / kBins) continue;
+  for_each_segment(path, grids, [&](const Segment& s) {
+    if (axial_difference(s.angle, window_center) > kAxisTolerance + 0.5 * kPi / kBins) return;
     c2 += s.length * std::cos(2 * s.angle);
     s2 += s.length * std::sin(2 * s.angle);
-  }
+  });
   const double axis = 0.5 * std::atan2(s2, c2);
-
-  double along = 0.0;
-  for (const auto& s : segments)
-    if (axial_difference(s.angle, axis) <= kAxisTolerance) along += s.length;
-  out.strip_fraction = along / total;
 
   // Strips: straight runs along the axis at least kLongRun long, ordered by their position
   // across it in the top-down view; each keeps its points on the top contour.
@@ -154,22 +150,28 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
   double run_length = 0.0, run_moment = 0.0;
   std::vector<Vec3> run_points;
   auto close_run = [&](int body) {
-    if (run_length >= kLongRun) runs[static_cast<std::size_t>(body)].push_back({run_moment / run_length, run_points});
+    if (run_length >= kLongRun) {
+      runs[static_cast<std::size_t>(body)].push_back({run_moment / run_length, std::move(run_points)});
+    }
     run_length = run_moment = 0.0;
     run_points.clear();
   };
-  for (std::size_t k = 0; k < segments.size(); ++k) {
-    const Segment& s = segments[k];
-    if (k > 0 && segments[k - 1].piece != s.piece) close_run(segments[k - 1].body);
+  double along = 0.0;
+  std::optional<Segment> previous;
+  for_each_segment(path, grids, [&](const Segment& s) {
+    if (previous && previous->piece != s.piece) close_run(previous->body);
     if (axial_difference(s.angle, axis) <= kAxisTolerance) {
+      along += s.length;
       run_length += s.length;
       run_moment += s.length * (nx * s.x + ny * s.y);
       run_points.push_back(s.mid);
     } else {
       close_run(s.body);
     }
-  }
-  if (!segments.empty()) close_run(segments.back().body);
+    previous = s;
+  });
+  if (previous) close_run(previous->body);
+  out.strip_fraction = along / total;
 
   // Neighbouring strips: positions closer than half a pad are one strip passed twice. The
   // gap between two strips is measured on the skin, not in the top-down view (which
