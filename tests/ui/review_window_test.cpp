@@ -30,6 +30,10 @@
 #include "palpa/ui/vtk_view.hpp"
 
 #include <vtkAxis.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
 #include <vtkChartXY.h>
 #include <vtkContextInteractorStyle.h>
 #include <vtkRenderWindowInteractor.h>
@@ -161,6 +165,27 @@ class ReviewWindowTest : public QObject {
     const double paused = w->time();
     QTest::qWait(100);
     QCOMPARE(w->time(), paused);
+  }
+
+  void aPausedReplayIsNotRedrawnEveryFrame() {
+    auto w = open_review(kExpert);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    QTest::qWait(300);  // the first paint
+    int renders = 0;
+    vtkNew<vtkCallbackCommand> count;
+    count->SetClientData(&renders);
+    count->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    w->view()->renderWindow()->AddObserver(vtkCommand::EndEvent, count);
+    QTest::qWait(2000);
+    qInfo("paused: %d frames drawn in 2 s", renders);
+    QVERIFY2(renders <= 12, qPrintable(QString::number(renders)));  // 8 at kIdleRedrawMs; 120 at 60 fps
+    renders = 0;
+    QTest::mouseClick(w->play_button(), Qt::LeftButton);
+    QTest::qWait(1000);
+    QTest::mouseClick(w->play_button(), Qt::LeftButton);
+    qInfo("playing: %d frames drawn in 1 s", renders);
+    QVERIFY2(renders >= 6, qPrintable(QString::number(renders)));  // every frame: 60 idle, 20 on a loaded CI
   }
 
   void metricsTableAgreesWithTheScoreCard() {

@@ -242,7 +242,12 @@ void ReviewWindow::set_time(double t) {
   }
   update_marks();
   charts_->set_cursor(t_);  // moves the cursor only: the series stay as built
+  render();
+}
+
+void ReviewWindow::render() {
   render_window_->Render();
+  since_render_.start();
 }
 
 std::size_t ReviewWindow::marks_shown() const { return static_cast<std::size_t>(marks_list_->count()); }
@@ -311,8 +316,8 @@ void ReviewWindow::frame() {
     const double elapsed = static_cast<double>(play_clock_.restart()) * 1e-3;
     set_time(t_ + elapsed * speed_);
     if (t_ >= span_.end) pause();
-  } else {
-    render_window_->Render();
+  } else if (!since_render_.isValid() || since_render_.elapsed() >= kIdleRedrawMs) {
+    render();
   }
 }
 

@@ -46,6 +46,9 @@ class ReviewWindow : public QMainWindow {
 
   static constexpr double kFingertipRadius = 0.006;  ///< m: drawn probe
   static constexpr int kSliderSteps = 10000;         ///< scrubber resolution over the duration
+  /// Paused, nothing moves: the view is redrawn at most this often (ms) unless a scrub, a
+  /// seek or the mouse on the view changes it (VTK's interactor redraws those itself).
+  static constexpr int kIdleRedrawMs = 250;
 
   const session::Session& session() const { return session_; }
   const score::Score& score() const { return score_; }
@@ -108,8 +111,11 @@ class ReviewWindow : public QMainWindow {
   std::vector<vtkSmartPointer<vtkActor>> mark_actors_;  // marks and their lines to the tumours found
   std::size_t marks_drawn_for_ = static_cast<std::size_t>(-1);  // event count the mark actors show
 
+  void render();
+
   QTimer timer_;
   QElapsedTimer play_clock_;
+  QElapsedTimer since_render_;  // paused, the view is redrawn only now and then (kIdleRedrawMs)
   double t_ = 0.0;
   std::size_t current_ = 0;
   double speed_ = 1.0;
