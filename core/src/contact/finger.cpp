@@ -39,10 +39,14 @@ double bonded_sphere_factor(double chi, double nu) {
 }
 
 double finger_force(double modulus, double nu, double depth, double thickness, const FingerLaw& law) {
+  return finger_force_at_contact(modulus, nu, depth, thickness, sphere_contact_radius(depth, law.radius), law);
+}
+
+double finger_force_at_contact(double modulus, double nu, double depth, double thickness, double c,
+                               const FingerLaw& law) {
   const double R = law.radius;
   if (!(depth > 0.0) || !(modulus > 0.0) || !(R > 0.0)) return 0.0;
   const double h = std::isfinite(thickness) ? std::max(thickness, R) : R;
-  const double c = sphere_contact_radius(depth, R);
   const double e_star = modulus / (1.0 - nu * nu);
   const double half_space = 0.5 * e_star * ((c * c + R * R) * std::log((R + c) / (R - c)) - 2.0 * c * R);
   const double strain = depth / R;

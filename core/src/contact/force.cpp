@@ -114,9 +114,13 @@ double tumour_contrast(double r, double s, double q, double h, const TumourContr
 
 double finger_tumour_contrast(double r, double s, double q, double h, double d, double R,
                               const TumourContrast& model) {
+  return finger_tumour_contrast_at_contact(r, s, q, h, d, sphere_contact_radius(d, R), model);
+}
+
+double finger_tumour_contrast_at_contact(double r, double s, double q, double h, double d, double c,
+                                         const TumourContrast& model) {
   const auto& f = model.finger;
   const double a = model.pad_radius;
-  const double c = sphere_contact_radius(d, R);
   if (!(c > 0.0)) return 0.0;
   TumourContrast as_pad = model;
   as_pad.pad_radius = f.radius_scale * a * std::pow(c / a, f.radius_power);
@@ -142,7 +146,7 @@ namespace {
 // Under strain stiffening the ratio of tangent moduli at the press's nominal strain counts:
 // q exp((b_t - b) eps). The geometry is the compressed layer's (TumourContrast::compressed).
 double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, double strain,
-                    const ForceOptions& options) {
+                    double finger_contact_radius, const ForceOptions& options) {
   const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
   const double height = to_center.dot(contact.outward);
   const double below_skin = contact.radius - height;  // the skin is R above the foot point
@@ -153,8 +157,8 @@ double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double no
   const double thickness = 2.0 * contact.radius;
   if (options.finger.on) {
     return weight * normal *
-           finger_tumour_contrast(tumour.radius, below_skin, ratio, thickness, contact.depth,
-                                  options.finger.law.radius, options.contrast);
+           finger_tumour_contrast_at_contact(tumour.radius, below_skin, ratio, thickness, contact.depth,
+                                             finger_contact_radius, options.contrast);
   }
   // The tissue over and under the tumour is thinner by the press: the contrast grows.
   const double left = options.contrast.compressed ? compressed_share(strain) : 1.0;
@@ -173,8 +177,10 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
   const double tissue = contact.depth;  // at most 2R on a support (top_side_contact)
   const double thickness = 2.0 * contact.radius;
   const double strain = thickness > 0.0 ? std::clamp(tissue / thickness, 0.0, 1.0) : 0.0;
-  const double linear = options.finger.on ? finger_force(options.finger.modulus, options.finger.poisson, tissue,
-                                                         thickness, options.finger.law)
+  // Sneddon's contact radius of the rounded finger: once per tick, for the tissue and every tumour.
+  const double c = options.finger.on ? sphere_contact_radius(tissue, options.finger.law.radius) : 0.0;
+  const double linear = options.finger.on ? finger_force_at_contact(options.finger.modulus, options.finger.poisson,
+                                                                    tissue, thickness, c, options.finger.law)
                                           : contact.stiffness * tissue;
   const double normal = linear * stiffening_factor(strain, options.stiffening);
   f.normal = normal * contact.outward;
@@ -186,7 +192,7 @@ Force contact_force(const mat::MatBody& body, const Contact& contact, const Vec3
   }
   double tumour = 0.0;
   for (const auto& t : tumours) {
-    tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, strain, options)
+    tumour += t.modulus_ratio > 0.0 ? tumour_in_pa(t, contact, normal, strain, c, options)
                                     : tumour_spring(t, contact.foot.point, contact.outward, contact.radius, tissue,
                                                     options.tumour);
   }

@@ -39,5 +39,9 @@ double bonded_sphere_factor(double chi, double nu);
 /// modulus `modulus` (Pa) and Poisson's ratio `nu` over a rigid base. A layer thinner than R
 /// is taken as that thick (as the pad's stiffness takes a layer thinner than the pad).
 double finger_force(double modulus, double nu, double depth, double thickness, const FingerLaw& law = {});
+/// The same with Sneddon's contact radius `c` = sphere_contact_radius(depth, law.radius)
+/// already known: the haptic tick finds it once for the tissue and every tumour.
+double finger_force_at_contact(double modulus, double nu, double depth, double thickness, double c,
+                               const FingerLaw& law);
 
 }  // namespace palpa::contact

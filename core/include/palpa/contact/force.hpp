@@ -87,6 +87,9 @@ double tumour_contrast(double r, double s, double q, double h, const TumourContr
 /// contact radius from sphere_contact_radius; 0 before contact): TumourContrast::Finger.
 double finger_tumour_contrast(double r, double s, double q, double h, double d, double R,
                               const TumourContrast& model = {});
+/// The same with the contact radius c (sphere_contact_radius(d, R)) already known.
+double finger_tumour_contrast_at_contact(double r, double s, double q, double h, double d, double c,
+                                         const TumourContrast& model);
 
 /// The share 1 - eps' of the layer left under a press at nominal strain eps, as the contrast
 /// model sees it: eps' = tanh(2 eps) / 2, about eps up to a fifth of the layer and never more
