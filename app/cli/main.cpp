@@ -1,5 +1,6 @@
-// palpa-cli: the headless tools of Palpa (validate and fit case files; later: probe,
-// simulate, score, batch, bench).
+// palpa-cli: the headless tools of Palpa: validate and fit case files, probe and simulate
+// the haptic model, run scripted exercises, score and batch-score sessions, benchmarks,
+// list devices. Each sub-command lives in its own *_command.cpp.
 #include <cstdio>
 #include <string>
 #include <vector>

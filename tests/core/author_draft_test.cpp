@@ -10,8 +10,8 @@
 #include "palpa/exercise/tumour_placement.hpp"
 #include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/scene/scene.hpp"
-#include "palpa/score/thresholds.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/io/thresholds.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 namespace palpa::author {
 namespace {
@@ -36,8 +36,8 @@ bool has_problem_at(const std::vector<io::Problem>& problems, const std::string&
 // The point of the slab's top contour above (x, y), picked as the window does.
 SurfacePoint pick_top(const CaseDraft& draft, double x, double y) {
   const auto scene = scene::Scene::build(draft.valid_case(), "draft");
-  const trainer::TopContourPicker picker(scene);
-  const auto hit = picker.pick(trainer::Vec3(x, y, 1.0), trainer::Vec3(0, 0, -1));
+  const render::TopContourPicker picker(scene);
+  const auto hit = picker.pick(render::Vec3(x, y, 1.0), render::Vec3(0, 0, -1));
   EXPECT_TRUE(hit.has_value());
   return {hit->body, {hit->point.x(), hit->point.y(), hit->point.z()}, {hit->normal.x(), hit->normal.y(), hit->normal.z()}};
 }
@@ -260,11 +260,11 @@ TEST(AuthorDraft, PresetChangeKeepsTumoursAndReportsOnesLeftOutside) {
 TEST(AuthorDraft, PresetChangeSwapsTheOrgansPressureBands) {
   const auto bands = [](const CaseDraft& d) {
     std::vector<io::Problem> problems;
-    const auto t = score::thresholds_from_case(d.document(), problems);
+    const auto t = io::thresholds_from_case(d.document(), problems);
     EXPECT_TRUE(problems.empty());
     return std::pair{t.light_max, t.deep_min};
   };
-  const score::Thresholds defaults;
+  const io::Thresholds defaults;
   CaseDraft draft(preset_defaults(Preset::Breast));
   EXPECT_EQ(bands(draft), std::pair(defaults.light_max, defaults.deep_min));
   EXPECT_FALSE(draft.document().contains("scoring"));

@@ -28,12 +28,12 @@ scene::ProbeResult probe(const scene::Scene& s, const Vec3& q) {
   return s.probe(q, state, {});
 }
 
-std::optional<SurfacePick> pick_above(const TopContourPicker& picker, double x, double y) {
+std::optional<render::SurfacePick> pick_above(const render::TopContourPicker& picker, double x, double y) {
   return picker.pick(Vec3(x, y, 0.5), Vec3(0, 0, -1));
 }
 
 TEST(PressureDial, NineSettingsInTheScoresBands) {
-  score::Thresholds th;  // light < 0.2, deep >= 0.5
+  io::Thresholds th;  // light < 0.2, deep >= 0.5
   PressureDial dial(th, 0);
   double last = -1.0;
   for (int k = 0; k < PressureDial::kSettings; ++k) {
@@ -61,7 +61,7 @@ TEST(PressureDial, NineSettingsInTheScoresBands) {
 
 TEST(SurfaceFollower, PressesToTheShareAndWalksAlongTheSurface) {
   const auto s = load_scene("default.json");
-  const TopContourPicker picker(s);
+  const render::TopContourPicker picker(s);
   SurfaceFollower f(s);
   EXPECT_FALSE(f.advance(0.016, 0.0).has_value());  // nothing before the first pick
   f.set_share(0.35);
@@ -87,7 +87,7 @@ TEST(SurfaceFollower, PressesToTheShareAndWalksAlongTheSurface) {
 
 TEST(SurfaceFollower, LiftsOffTheBodyAndNeverPressesPastTheSupport) {
   const auto s = load_scene("default.json");
-  const TopContourPicker picker(s);
+  const render::TopContourPicker picker(s);
   SurfaceFollower f(s);
   f.set_share(2.0);  // asks for more than the tissue: clamped below the support
   f.aim(pick_above(picker, 0.0, 0.0));
@@ -106,7 +106,7 @@ TEST(SurfaceFollower, LiftsOffTheBodyAndNeverPressesPastTheSupport) {
 
 TEST(SurfaceFollower, CrossesBetweenBodiesThroughTheAir) {
   const auto s = load_scene("two-bodies.json");
-  const TopContourPicker picker(s);
+  const render::TopContourPicker picker(s);
   SurfaceFollower f(s);
   f.set_share(0.6);
   f.aim(pick_above(picker, -0.06, 0.0));
@@ -135,7 +135,7 @@ TEST(SurfaceFollower, CrossesBetweenBodiesThroughTheAir) {
 // less over the tumour than over the same tissue beside it.
 TEST(SurfaceFollower, ForceModeSinksLessOverAStiffLump) {
   const auto s = load_scene("default.json");
-  const TopContourPicker picker(s);
+  const render::TopContourPicker picker(s);
   const auto& t = s.body(0).tumours.at(0);
   const auto settle = [&](double x, double y) {
     SurfaceFollower f(s);

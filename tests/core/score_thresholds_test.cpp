@@ -3,7 +3,8 @@
 // parse_case reports them.
 #include <gtest/gtest.h>
 
-#include "palpa/score/thresholds.hpp"
+#include "palpa/io/thresholds.hpp"
+#include "palpa/score/score.hpp"  // scoring names the thresholds as its own
 #include "score_fixture.hpp"
 
 namespace palpa::score {

@@ -54,10 +54,10 @@ bool run_until(LiveExercise& live, const std::function<bool()>& done, double sec
 }
 
 /// The rest top contour straight above a point (a vertical ray from high above).
-SurfacePick top_above(const LiveExercise& live, const Vec3& point) {
+render::SurfacePick top_above(const LiveExercise& live, const Vec3& point) {
   const auto hit = live.pick(point + Vec3(0, 0, 0.5), Vec3(0, 0, -1));
   EXPECT_TRUE(hit.has_value());
-  return hit.value_or(SurfacePick{});
+  return hit.value_or(render::SurfacePick{});
 }
 
 TEST(TopContourPicker, HitsTheTopContourWhereTheProbeJustTouches) {

@@ -41,7 +41,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/trainer/live_exercise.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/render/surface_pick.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
@@ -93,7 +93,7 @@ class Hand {
   double now() const { return w_.exercise().snapshot().t; }
 
   /// The top contour's point over plan position (x, y), if the body is there.
-  std::optional<palpa::trainer::SurfacePick> top_at(double x, double y) const {
+  std::optional<palpa::render::SurfacePick> top_at(double x, double y) const {
     return w_.exercise().pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
   }
 
@@ -207,7 +207,7 @@ constexpr double kTracking = 0.03;  // share of the local thickness
 /// Checks every recorded sample against what the hand chose at that time (docs: the
 /// acceptance criteria of docs/user-guide.md, "How pressure works").
 Findings check_session(const palpa::session::Session& s, const palpa::scene::Scene& scene,
-                       const std::vector<Step>& steps, const palpa::score::Thresholds& th) {
+                       const std::vector<Step>& steps, const palpa::io::Thresholds& th) {
   Findings f;
   std::size_t at = 0;
   for (const auto& sample : s.samples) {
@@ -486,8 +486,8 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
 }
 
 /// The skin (the top contour's point) over plan position (x, y) of a case's scene.
-palpa::trainer::SurfacePick skin_at(const palpa::scene::Scene& scene, double x, double y) {
-  const auto skin = palpa::trainer::TopContourPicker(scene).pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
+palpa::render::SurfacePick skin_at(const palpa::scene::Scene& scene, double x, double y) {
+  const auto skin = palpa::render::TopContourPicker(scene).pick(Vec3(x, y, 1.0), Vec3(0, 0, -1));
   if (!skin) throw std::invalid_argument("no skin at the tumour's plan position");
   return *skin;
 }

@@ -141,7 +141,7 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
   io::CaseFile bodies_only = file;
   bodies_only.tumours.clear();
   auto scene = std::make_unique<scene::Scene>(scene::Scene::build(bodies_only, "case"));  // throws CaseError
-  auto picker = std::make_unique<trainer::TopContourPicker>(*scene);
+  auto picker = std::make_unique<render::TopContourPicker>(*scene);
   clear_bodies();
   range_ = {std::numeric_limits<double>::max(), 0.0};
   // The overlay speaks kPa when every body gives its tissue by its modulus.
@@ -223,8 +223,8 @@ void InstructorScene::set_stiffness_overlay(bool on) {
   legend_->SetVisibility(on && !surfaces_.empty());
 }
 
-std::optional<trainer::SurfacePick> InstructorScene::pick(const trainer::Vec3& origin,
-                                                          const trainer::Vec3& direction) const {
+std::optional<render::SurfacePick> InstructorScene::pick(const render::Vec3& origin,
+                                                          const render::Vec3& direction) const {
   if (!picker_) return std::nullopt;
   return picker_->pick(origin, direction);
 }

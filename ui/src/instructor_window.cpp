@@ -331,7 +331,7 @@ void InstructorWindow::render() {
   render_window_->Render();
 }
 
-QPoint InstructorWindow::to_view(const trainer::Vec3& point) const {
+QPoint InstructorWindow::to_view(const render::Vec3& point) const {
   return view_->to_view(*renderer_, point);
 }
 

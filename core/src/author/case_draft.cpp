@@ -7,7 +7,7 @@
 
 #include "palpa/io/json_text.hpp"
 #include "palpa/scene/scene.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 namespace palpa::author {
 namespace {
@@ -467,12 +467,12 @@ std::optional<SurfacePoint> CaseDraft::anchor(std::size_t k) const {
   bodies_only.tumours.clear();
   try {
     const auto scene = scene::Scene::build(bodies_only, source());
-    const trainer::TopContourPicker picker(scene);
-    const trainer::Vec3 centre(t->center[0], t->center[1], t->center[2]);
-    const auto hit = picker.pick(centre, trainer::Vec3::UnitZ());
+    const render::TopContourPicker picker(scene);
+    const render::Vec3 centre(t->center[0], t->center[1], t->center[2]);
+    const auto hit = picker.pick(centre, render::Vec3::UnitZ());
     if (!hit || hit->distance <= 0.0) return std::nullopt;
     // The normal from the centre to the hit, so that depth along it gives the centre back.
-    const trainer::Vec3 n = (hit->point - centre).normalized();
+    const render::Vec3 n = (hit->point - centre).normalized();
     return SurfacePoint{hit->body, {hit->point.x(), hit->point.y(), hit->point.z()}, {n.x(), n.y(), n.z()}};
   } catch (const std::exception&) {
     return std::nullopt;

@@ -8,7 +8,7 @@
 
 #include "palpa/io/json_text.hpp"
 #include "palpa/mat/layer_stiffness.hpp"
-#include "palpa/score/thresholds.hpp"
+#include "palpa/io/thresholds.hpp"
 
 namespace palpa::io {
 namespace {
@@ -544,7 +544,7 @@ CaseFile parse_case(std::string_view text, const std::string& source) {
   CaseFile out = validate(std::move(doc), v);
   // "scoring" and "exam_region" (docs/scoring.md): every tool rejects a bad pass mark.
   std::vector<Problem> scoring;
-  score::thresholds_from_case(out.document, scoring);
+  thresholds_from_case(out.document, scoring);
   for (auto& p : scoring) v.add(std::move(p.where), std::move(p.reason));
   if (!v.ok()) throw CaseError(source, v.take());
   return out;

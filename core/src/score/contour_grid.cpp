@@ -50,7 +50,7 @@ int cells_for(double length, double cell_size) {
 
 }  // namespace
 
-ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>& parts, bool whole,
+ContourGrid::ContourGrid(const mat::MatBody& body, const std::vector<io::RegionPart>& parts, bool whole,
                          double cell_size) {
   double length_u = 0.0, length_v = 0.0;
   contour_lengths(body, length_u, length_v);

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "palpa/mat/mat_body.hpp"
-#include "palpa/score/thresholds.hpp"
+#include "palpa/io/thresholds.hpp"
 
 namespace palpa::score::detail {
 
@@ -29,7 +29,7 @@ class ContourGrid {
   /// `parts`: the exam-region rectangles of this body; `whole`: the whole body is examined
   /// (no exam_region in the case). Cells are about `cell_size` m on the top contour,
   /// between kMinCells and kMaxCells per direction.
-  ContourGrid(const mat::MatBody& body, const std::vector<RegionPart>& parts, bool whole, double cell_size = 0.002);
+  ContourGrid(const mat::MatBody& body, const std::vector<io::RegionPart>& parts, bool whole, double cell_size = 0.002);
 
   static constexpr int kMinCells = 8;
   static constexpr int kMaxCells = 256;

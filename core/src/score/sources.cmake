@@ -1,6 +1,5 @@
 # Sources of core/score (see core/CMakeLists.txt).
 target_sources(palpa_core PRIVATE
-  ${CMAKE_CURRENT_LIST_DIR}/thresholds.cpp
   ${CMAKE_CURRENT_LIST_DIR}/contour_grid.cpp
   ${CMAKE_CURRENT_LIST_DIR}/coverage.cpp
   ${CMAKE_CURRENT_LIST_DIR}/search_pattern.cpp

@@ -14,9 +14,9 @@ namespace palpa::trainer {
 
 namespace {
 
-score::Thresholds thresholds_of(const io::CaseFile& placed, const std::string& source) {
+io::Thresholds thresholds_of(const io::CaseFile& placed, const std::string& source) {
   std::vector<io::Problem> problems;
-  auto thresholds = score::thresholds_from_case(io::to_json(placed), problems);
+  auto thresholds = io::thresholds_from_case(io::to_json(placed), problems);
   if (!problems.empty()) throw io::CaseError(source, problems);
   return thresholds;
 }
@@ -83,7 +83,7 @@ void LiveExercise::set_probe_target(const Vec3& target) {
   device_.set_target(target);
 }
 
-void LiveExercise::aim(const std::optional<SurfacePick>& pick) {
+void LiveExercise::aim(const std::optional<render::SurfacePick>& pick) {
   follower_.aim(pick);
   if (!following_) last_follow_ = std::chrono::steady_clock::now();
   following_ = true;

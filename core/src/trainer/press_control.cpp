@@ -16,12 +16,12 @@ const char* to_string(PressureLevel level) {
   return "none";
 }
 
-PressureLevel level_of(double fraction, const score::Thresholds& thresholds) {
+PressureLevel level_of(double fraction, const io::Thresholds& thresholds) {
   if (fraction < thresholds.light_max) return PressureLevel::Light;
   return fraction >= thresholds.deep_min ? PressureLevel::Deep : PressureLevel::Medium;
 }
 
-PressureDial::PressureDial(const score::Thresholds& thresholds, int index) : thresholds_(thresholds) {
+PressureDial::PressureDial(const io::Thresholds& thresholds, int index) : thresholds_(thresholds) {
   set_index(index);
 }
 
@@ -71,7 +71,7 @@ SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v) {
 SurfaceFollower::SurfaceFollower(const scene::Scene& scene, const FollowerOptions& options)
     : scene_(&scene), options_(options) {}
 
-void SurfaceFollower::aim(const std::optional<SurfacePick>& pick) {
+void SurfaceFollower::aim(const std::optional<render::SurfacePick>& pick) {
   if (!pick || pick->body >= scene_->size()) {
     aimed_on_body_ = false;
     return;

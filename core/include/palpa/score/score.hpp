@@ -11,10 +11,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "palpa/score/thresholds.hpp"
+#include "palpa/io/thresholds.hpp"
 #include "palpa/session/session.hpp"
 
 namespace palpa::score {
+
+// The thresholds are read with the case (io/thresholds.hpp); scoring names them as its own.
+using io::RegionPart;
+using io::Thresholds;
+using io::thresholds_from_case;
+using io::to_json;
 
 struct TumourResult {
   std::string body;

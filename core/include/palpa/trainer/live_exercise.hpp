@@ -25,7 +25,7 @@
 #include "palpa/session/session_writer.hpp"
 #include "palpa/trainer/display_meshes.hpp"
 #include "palpa/trainer/press_control.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 namespace palpa::trainer {
 
@@ -92,7 +92,7 @@ class LiveExercise {
   /// The mouse's way: the pointer is over this pick of a top contour (or off the bodies).
   /// update() then walks the finger along the surface to it at the pressure set with
   /// set_pressure_share / set_force_target (press_control.hpp), lifting off the bodies.
-  void aim(const std::optional<SurfacePick>& pick);
+  void aim(const std::optional<render::SurfacePick>& pick);
   void set_pressure_share(double share) { follower_.set_share(share); }
   void set_force_target(double newtons) { follower_.set_force_target(newtons); }
   const SurfaceFollower& follower() const { return follower_; }
@@ -106,7 +106,7 @@ class LiveExercise {
   /// Off-screen culling: update() skips bodies the view cannot see (DisplayMeshes::set_visible).
   void set_body_visible(std::size_t body, bool visible) { meshes_.set_visible(body, visible); }
   /// Picks the rest top contour under a pointer ray (see surface_pick.hpp).
-  std::optional<SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
+  std::optional<render::SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
     return picker_.pick(origin, direction);
   }
   /// The contact of the last snapshot taken by update().
@@ -170,7 +170,7 @@ class LiveExercise {
   std::unique_ptr<session::SessionWriter> writer_;
   std::unique_ptr<session::SessionRecorder> recorder_;
   DisplayMeshes meshes_;
-  TopContourPicker picker_;
+  render::TopContourPicker picker_;
   SurfaceFollower follower_;
   bool following_ = false;                        // aim() drives the probe target
   std::chrono::steady_clock::time_point last_follow_{};

@@ -10,16 +10,18 @@
 #include <optional>
 
 #include "palpa/scene/scene.hpp"
-#include "palpa/score/thresholds.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/io/thresholds.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 namespace palpa::trainer {
+
+using Vec3 = Eigen::Vector3d;
 
 enum class PressureLevel : std::uint8_t { None, Light, Medium, Deep };
 const char* to_string(PressureLevel level);
 
 /// The level a press of `fraction` of the local thickness counts as (the score's bands).
-PressureLevel level_of(double fraction, const score::Thresholds& thresholds);
+PressureLevel level_of(double fraction, const io::Thresholds& thresholds);
 
 /// Nine settings, three per level, from the lightest light to the deepest deep.
 class PressureDial {
@@ -29,7 +31,7 @@ class PressureDial {
   /// The deepest share it offers: the last quarter of the tissue is left to the support.
   static constexpr double kMaxShare = 0.85;
 
-  explicit PressureDial(const score::Thresholds& thresholds, int index = 4);
+  explicit PressureDial(const io::Thresholds& thresholds, int index = 4);
   int index() const { return index_; }
   void set_index(int index);
   void step(int delta) { set_index(index_ + delta); }
@@ -44,7 +46,7 @@ class PressureDial {
   static int middle_of(PressureLevel level);
 
  private:
-  score::Thresholds thresholds_;
+  io::Thresholds thresholds_;
   int index_ = 4;
 };
 
@@ -72,7 +74,7 @@ class SurfaceFollower {
   explicit SurfaceFollower(const scene::Scene& scene, const FollowerOptions& options = {});
 
   /// The pointer is over a top contour at `pick`, or off every body (nullopt): lift there.
-  void aim(const std::optional<SurfacePick>& pick);
+  void aim(const std::optional<render::SurfacePick>& pick);
   /// Level mode: press to this share of the local thickness (clamped to [0, kMaxShare]).
   void set_share(double share);
   /// Force mode: sink until |F| reaches `newtons` (over a stiff lump the finger sinks less);

@@ -12,7 +12,7 @@
 
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 class vtkActor;
 class vtkLookupTable;
@@ -39,8 +39,8 @@ class InstructorScene {
   bool stiffness_overlay() const { return overlay_on_; }
 
   bool has_bodies() const { return scene_ != nullptr; }
-  /// The rest top contour under a ray (see trainer::TopContourPicker).
-  std::optional<trainer::SurfacePick> pick(const trainer::Vec3& origin, const trainer::Vec3& direction) const;
+  /// The rest top contour under a ray (see render::TopContourPicker).
+  std::optional<render::SurfacePick> pick(const render::Vec3& origin, const render::Vec3& direction) const;
   /// Bounds of the drawn body surfaces {xmin, xmax, ymin, ymax, zmin, zmax}.
   std::array<double, 6> bounds() const;
   std::size_t tumour_count() const { return tumours_.size(); }
@@ -60,7 +60,7 @@ class InstructorScene {
   vtkRenderer* bodies_;
   vtkRenderer* overlay_;
   std::unique_ptr<scene::Scene> scene_;
-  std::unique_ptr<trainer::TopContourPicker> picker_;
+  std::unique_ptr<render::TopContourPicker> picker_;
   std::vector<Surface> surfaces_;  // top, bottom per body
   std::vector<vtkSmartPointer<vtkActor>> tumours_;
   vtkSmartPointer<vtkLookupTable> lut_;

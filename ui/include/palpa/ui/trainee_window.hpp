@@ -151,7 +151,7 @@ class TraineeWindow : public QMainWindow {
   int wheel_rest_ = 0;         // wheel angle not yet a whole notch
   QLabel* pressure_label_ = nullptr;
   QCheckBox* force_mode_ = nullptr;
-  std::optional<trainer::SurfacePick> picked_;
+  std::optional<render::SurfacePick> picked_;
   std::optional<score::Score> score_;
   std::string scheduling_;
 };

@@ -2,7 +2,8 @@
 // What a session is scored against: pass/fail gates, cut points and sub-score weights, with
 // defaults from the palpation literature (docs/scoring.md gives each default's source).
 // A case may override any of them in its optional "scoring" object and restrict the exam
-// region with "exam_region" (docs/case-format.md).
+// region with "exam_region" (docs/case-format.md). They are part of the case file, so they
+// live here with it: parse_case checks them, and score (a layer above) scores with them.
 #include <string>
 #include <vector>
 
@@ -10,7 +11,7 @@
 
 #include "palpa/io/case_file.hpp"
 
-namespace palpa::score {
+namespace palpa::io {
 
 /// A rectangle of one body's (u, v) parameter square; the exam region is their union.
 struct RegionPart {
@@ -55,9 +56,9 @@ struct Thresholds {
 /// "exam_region". Problems (unknown key, wrong type, out of range, unknown body, empty
 /// rectangle, light_max >= deep_min) are appended with JSON pointers such as
 /// /scoring/min_coverage; the returned thresholds then hold the defaults for those fields.
-Thresholds thresholds_from_case(const nlohmann::json& case_document, std::vector<io::Problem>& problems);
+Thresholds thresholds_from_case(const nlohmann::json& case_document, std::vector<Problem>& problems);
 
 /// The effective thresholds as a JSON object with the "scoring" keys (for reports).
 nlohmann::json to_json(const Thresholds& thresholds);
 
-}  // namespace palpa::score
+}  // namespace palpa::io

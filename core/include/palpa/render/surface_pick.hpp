@@ -8,7 +8,7 @@
 #include "palpa/render/tessellation.hpp"
 #include "palpa/scene/scene.hpp"
 
-namespace palpa::trainer {
+namespace palpa::render {
 
 using Vec3 = Eigen::Vector3d;
 
@@ -26,10 +26,10 @@ class TopContourPicker {
   /// The nearest hit of the ray origin + s * direction (s > 0) on any top contour, from
   /// either side; nothing when it misses them all. direction need not be unit length.
   std::optional<SurfacePick> pick(const Vec3& origin, const Vec3& direction) const;
-  const render::Mesh& mesh(std::size_t body) const { return meshes_[body]; }
+  const Mesh& mesh(std::size_t body) const { return meshes_[body]; }
 
  private:
-  std::vector<render::Mesh> meshes_;
+  std::vector<Mesh> meshes_;
 };
 
-}  // namespace palpa::trainer
+}  // namespace palpa::render

@@ -1,10 +1,10 @@
-#include "palpa/score/thresholds.hpp"
+#include "palpa/io/thresholds.hpp"
 
 #include <cmath>
 #include <set>
 #include <sstream>
 
-namespace palpa::score {
+namespace palpa::io {
 namespace {
 
 using nlohmann::json;
@@ -79,7 +79,7 @@ std::string range_text(const Range& r) {
 }
 
 bool read_number(const json& value, const std::string& where, const char* name, const Range& range,
-                 std::vector<io::Problem>& problems, double& out) {
+                 std::vector<Problem>& problems, double& out) {
   if (!value.is_number()) {
     problems.push_back({where, std::string(name) + " must be a number, not " + value.type_name()});
     return false;
@@ -109,7 +109,7 @@ std::string known_keys() {
   return s;
 }
 
-void read_scoring(const json& scoring, Thresholds& t, std::vector<io::Problem>& problems) {
+void read_scoring(const json& scoring, Thresholds& t, std::vector<Problem>& problems) {
   if (!scoring.is_object()) {
     problems.push_back({"/scoring", std::string("scoring must be an object, not ") + scoring.type_name()});
     return;
@@ -182,7 +182,7 @@ void read_scoring(const json& scoring, Thresholds& t, std::vector<io::Problem>& 
 
 // [a, b] with 0 <= a < b <= 1, or absent (the whole parameter range).
 void read_interval(const json& part, const std::string& base, const char* key, double& lo, double& hi,
-                   std::vector<io::Problem>& problems) {
+                   std::vector<Problem>& problems) {
   if (!part.contains(key)) return;
   const std::string where = base + "/" + key;
   const json& value = part[key];
@@ -201,7 +201,7 @@ void read_interval(const json& part, const std::string& base, const char* key, d
   hi = b;
 }
 
-void read_region(const json& doc, const json& region, Thresholds& t, std::vector<io::Problem>& problems) {
+void read_region(const json& doc, const json& region, Thresholds& t, std::vector<Problem>& problems) {
   if (!region.is_array() || region.empty()) {
     problems.push_back({"/exam_region", "exam_region must be a non-empty array of {\"body\", \"u\", \"v\"} "
                                         "(leave it out to examine every body's whole top contour)"});
@@ -251,7 +251,7 @@ void read_region(const json& doc, const json& region, Thresholds& t, std::vector
 
 }  // namespace
 
-Thresholds thresholds_from_case(const nlohmann::json& case_document, std::vector<io::Problem>& problems) {
+Thresholds thresholds_from_case(const nlohmann::json& case_document, std::vector<Problem>& problems) {
   Thresholds t;
   if (!case_document.is_object()) return t;
   if (case_document.contains("scoring")) read_scoring(case_document["scoring"], t, problems);
@@ -266,4 +266,4 @@ nlohmann::json to_json(const Thresholds& t) {
   return out;
 }
 
-}  // namespace palpa::score
+}  // namespace palpa::io

@@ -1,11 +1,11 @@
-#include "palpa/trainer/surface_pick.hpp"
+#include "palpa/render/surface_pick.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include <Eigen/Geometry>
 
-namespace palpa::trainer {
+namespace palpa::render {
 
 TopContourPicker::TopContourPicker(const scene::Scene& scene, double tolerance) {
   render::TessellationOptions options;
@@ -67,4 +67,4 @@ std::optional<SurfacePick> TopContourPicker::pick(const Vec3& origin, const Vec3
   return best;
 }
 
-}  // namespace palpa::trainer
+}  // namespace palpa::render
