@@ -11,11 +11,11 @@ added by hand (crash-*, timeout-*, or any other name) are left alone.
 
 import argparse
 import glob
+import importlib.util
 import json
 import os
 import shutil
 import sqlite3
-import struct
 import tempfile
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -32,19 +32,15 @@ def write(name, file, data):
         f.write(data if isinstance(data, bytes) else data.encode())
 
 
-def flat_body(width, rows=5, cols=5, pulled=None):
-    """A flat body `width` m across, 20 mm thick in the middle; `pulled` moves its first
-    boundary skeleton point that far along -x (tests/cli/test_hostile_sessions.py)."""
-    medial, radius = [], []
-    for i in range(rows):
-        for j in range(cols):
-            medial.append([-width / 2 + width * i / (rows - 1), -width / 2 + width * j / (cols - 1), 0.0])
-            radius.append(0.0 if i in (0, rows - 1) or j in (0, cols - 1) else 0.01)
-    if pulled:
-        medial[0][0] -= pulled
-    return {"format": "palpa-case", "version": 1, "title": "hostile",
-            "bodies": [{"id": "b", "rows": rows, "cols": cols, "medial": medial, "radius": radius,
-                        "stiffness": [200.0] * (rows * cols)}]}
+def flat_body(width, pulled=None):
+    """The hostile flat body of tests/cli/test_hostile_sessions.py (one definition for the
+    regression test and the corpus): `width` m across, 20 mm thick in the middle, its first
+    boundary skeleton point moved `pulled` m along -x."""
+    spec = importlib.util.spec_from_file_location(
+        "test_hostile_sessions", os.path.join(REPO, "tests", "cli", "test_hostile_sessions.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.flat_body(width, pulled=pulled)
 
 
 def case_corpus():
@@ -55,15 +51,28 @@ def case_corpus():
     write("case_loader", "hostile-widest-plausible.json", json.dumps(flat_body(2.0)))
 
 
-def session_from(case, samples, sql=None):
-    """The light sample session's meta with `case`, `samples` (tick, t, u, v, depth) in
-    contact, its start and end events; `sql` run on it last. Returns the file's bytes."""
+def edited_light_session(edit):
+    """A copy of the light sample session changed by `edit(db)`, with 512-byte pages (small
+    inputs: mutations go further). Returns the file's bytes."""
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "s.palpa")
         src = sqlite3.connect("file:" + os.path.join(REPO, "data", "sessions", "light.palpa") + "?mode=ro", uri=True)
         src.execute("VACUUM INTO ?", (path,))
         src.close()
         db = sqlite3.connect(path)
+        edit(db)
+        db.commit()
+        db.execute("PRAGMA page_size = 512")
+        db.execute("VACUUM")
+        db.close()
+        with open(path, "rb") as f:
+            return f.read()
+
+
+def session_from(case, samples, sql=None):
+    """The light sample session's meta with `case`, `samples` (tick, t, u, v, depth) in
+    contact, its start and end events; `sql` run on it last. Returns the file's bytes."""
+    def edit(db):
         if case is not None:
             db.execute("UPDATE meta SET value = ? WHERE key = 'case'", (json.dumps(case),))
         db.execute("DELETE FROM samples")
@@ -72,31 +81,18 @@ def session_from(case, samples, sql=None):
         db.execute("UPDATE events SET t = ? WHERE kind = 'end'", (last,))
         if sql:
             db.executescript(sql)
-        db.commit()
-        db.execute("PRAGMA page_size = 512")  # small pages, small inputs: mutations go further
-        db.execute("VACUUM")
-        db.close()
-        with open(path, "rb") as f:
-            return f.read()
+    return edited_light_session(edit)
+
+
+def first_press(db):
+    """The light session cut to its first 300 ticks in contact, as recorded."""
+    first = db.execute("SELECT min(tick) FROM samples WHERE body IS NOT NULL").fetchone()[0] or 0
+    db.execute("DELETE FROM samples WHERE tick < ? OR tick >= ?", (first, first + 300))
+    db.execute("UPDATE samples SET tick = tick - ?", (first,))
 
 
 def session_corpus():
-    # A real press: the light session's first 300 ticks, as recorded.
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "s.palpa")
-        src = sqlite3.connect("file:" + os.path.join(REPO, "data", "sessions", "light.palpa") + "?mode=ro", uri=True)
-        src.execute("VACUUM INTO ?", (path,))
-        src.close()
-        db = sqlite3.connect(path)
-        first = db.execute("SELECT min(tick) FROM samples WHERE body IS NOT NULL").fetchone()[0] or 0
-        db.execute("DELETE FROM samples WHERE tick < ? OR tick >= ?", (first, first + 300))
-        db.execute("UPDATE samples SET tick = tick - ?", (first,))
-        db.commit()
-        db.execute("PRAGMA page_size = 512")
-        db.execute("VACUUM")
-        db.close()
-        with open(path, "rb") as f:
-            write("session_scorer", "light-first-press.palpa", f.read())
+    write("session_scorer", "light-first-press.palpa", edited_light_session(first_press))
     jumps = [(k, k * 0.001, 0.02 if k % 2 == 0 else 0.98, 0.5, 0.005) for k in range(200)]
     write("session_scorer", "hostile-jumps-2m.palpa", session_from(flat_body(2.0), jumps))
     write("session_scorer", "hostile-jumps-200m.palpa", session_from(flat_body(200.0), jumps[:100]))
