@@ -7,7 +7,7 @@ set -euo pipefail
 # device/: hidapi (SpaceMouse) and libusb (Falcon), found through pkg-config.
 packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
-  libeigen3-dev nlohmann-json3-dev libcli11-dev
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth

@@ -26,12 +26,15 @@ CORE = {
     "render": {"deform", "mat", "scene", "spline"},
     "engine": {"deform", "scene"},
     "session": {"engine", "io"},
-    "score": {"io", "mat", "scene", "session"},
-    "exercise": {"engine", "io", "mat", "scene", "session"},
-    "trainer": {"engine", "exercise", "io", "render", "scene", "score", "session"},
-    "author": {"exercise", "io", "mat", "render", "scene"},
+    "score": {"engine", "io", "mat", "scene", "session"},
+    "scripted": {"engine", "io", "mat", "scene", "session"},
+    "live": {"engine", "io", "render", "scene", "score", "scripted", "session"},
+    "author": {"io", "mat", "render", "scene", "scripted"},
 }
-CORE_NAMES = set(CORE) | {"version"}  # palpa/version.hpp: generated, part of core
+# Headers any core module may include: palpa/version.hpp (generated) and palpa/vec3.hpp
+# (the one 3-vector, docs/architecture.md "One vocabulary").
+SHARED = {"version", "vec3"}
+CORE_NAMES = set(CORE) | SHARED
 
 # Parts above core: the folders, and which header families (palpa/NAME/...) each may use.
 PARTS = {
@@ -44,7 +47,7 @@ PARTS = {
 
 GUI = re.compile(r"#\s*include\s*<(Q[A-Za-z]|QVTK|vtk)")
 OPENCV = re.compile(r"#\s*include\s*<opencv2/")
-PALPA = re.compile(r'#\s*include\s*"palpa/([a-z_]+)(/|\.hpp")')
+PALPA = re.compile(r'#\s*include\s*"palpa/([a-z0-9_]+)(/|\.hpp")')
 LOCAL = re.compile(r'#\s*include\s*"((?:\.\./)+[^"]+)"')
 SOURCES = (".cpp", ".hpp", ".h", ".cc", ".in")
 
@@ -89,7 +92,7 @@ def check_core(repo, problems):
                     problems.append(where + "core includes palpa/%s, which is not core" % m.group(1))
                 continue
             target = m.group(1)
-            if target == module or target == "version":
+            if target == module or target in SHARED:
                 continue
             if target not in CORE:
                 problems.append(where + "core/%s includes palpa/%s, which is not core" % (module, target))

@@ -193,26 +193,13 @@ Outcome process(const Input& input, const fs::path& sessions_dir, bool reports, 
   return outcome;
 }
 
-int run_batch(const BatchOptions& o) {
-  const auto inputs = collect_inputs(o.paths);
-  const fs::path out(o.out);
-  if (auto why = out_refusal(out, o.force, inputs); !why.empty()) {
-    print_error("--out: " + why);
-    return kBadInput;
-  }
-  std::error_code ec;
-  fs::create_directories(out / "trainees", ec);
-  if (!ec && o.reports) fs::create_directories(out / "sessions", ec);
-  if (ec) {
-    print_error(o.out + ": cannot create the output folder: " + ec.message());
-    return kFailure;
-  }
-
-  // The pool: each worker takes the next file, reads and scores it, keeps the summary.
+// The pool: each worker takes the next file, reads and scores it, keeps the summary.
+// Returns the outcomes in input order; `output_failure` gets the first report-writing error.
+std::vector<Outcome> score_all(const std::vector<Input>& inputs, const BatchOptions& o, const fs::path& out,
+                               std::string& output_failure) {
   std::vector<Outcome> outcomes(inputs.size());
   std::atomic<std::size_t> next{0};
   std::mutex output_mutex;
-  std::string output_failure;
   Progress progress(inputs.size());
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs =
@@ -235,6 +222,75 @@ int run_batch(const BatchOptions& o) {
     work();
   }
   progress.finish();
+  return outcomes;
+}
+
+void write_summary(const fs::path& out, const std::vector<Scored>& scored,
+                   const std::vector<report::SkippedFile>& skipped) {
+  std::string summary = report::csv_header() + "\n";
+  for (const auto& s : scored) summary += report::csv_row(s.header, s.score) + "\n";
+  report::write_text(out / "summary.csv", summary);
+  std::string errors = "file,error\n";
+  for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
+  report::write_text(out / "errors.csv", errors);
+}
+
+// One trainee's learning curve from her attempts (in order): CSV and PNG under trainees/.
+report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Scored*>& attempts) {
+  report::TraineeCurve curve;
+  curve.trainee = attempts.front()->header.trainee;
+  curve.file_stem = report::trainee_file_stem(curve.trainee);
+  std::vector<bool> passed;
+  for (const Scored* a : attempts) {
+    curve.attempts.push_back(report::attempt_of(a->header, a->score));
+    passed.push_back(a->score.passed);
+  }
+  curve.cusum = report::failure_cusum(passed);
+  report::write_text(out / "trainees" / (curve.file_stem + ".csv"), report::trainee_csv(curve.attempts, curve.cusum));
+  curve.png = report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum));
+  report::write_text(out / "trainees" / (curve.file_stem + ".png"),
+                     std::string_view(reinterpret_cast<const char*>(curve.png.data()), curve.png.size()));
+  return curve;
+}
+
+// Learning curves follow a trainee's exams: by default trainee exercises only, and no
+// attempt the trainee abandoned (summary.csv still lists every session). `scored` is
+// sorted by trainee.
+std::vector<report::TraineeCurve> write_curves(const fs::path& out, const std::vector<Scored>& scored,
+                                               const BatchOptions& o) {
+  std::vector<const Scored*> attempts;
+  for (const auto& s : scored) {
+    if (s.score.abandoned && !o.include_abandoned) continue;
+    if (s.header.mode != "trainee" && !o.all_modes) continue;
+    attempts.push_back(&s);
+  }
+  std::vector<report::TraineeCurve> curves;
+  for (std::size_t begin = 0; begin < attempts.size();) {
+    std::size_t end = begin;
+    while (end < attempts.size() && attempts[end]->header.trainee == attempts[begin]->header.trainee) ++end;
+    curves.push_back(write_curve(out, {attempts.begin() + static_cast<std::ptrdiff_t>(begin),
+                                       attempts.begin() + static_cast<std::ptrdiff_t>(end)}));
+    begin = end;
+  }
+  return curves;
+}
+
+int run_batch(const BatchOptions& o) {
+  const auto inputs = collect_inputs(o.paths);
+  const fs::path out(o.out);
+  if (auto why = out_refusal(out, o.force, inputs); !why.empty()) {
+    print_error("--out: " + why);
+    return kBadInput;
+  }
+  std::error_code ec;
+  fs::create_directories(out / "trainees", ec);
+  if (!ec && o.reports) fs::create_directories(out / "sessions", ec);
+  if (ec) {
+    print_error(o.out + ": cannot create the output folder: " + ec.message());
+    return kFailure;
+  }
+  std::string output_failure;
+  std::vector<Outcome> outcomes = score_all(inputs, o, out, output_failure);
 
   std::vector<Scored> scored;
   std::vector<report::SkippedFile> skipped;
@@ -249,43 +305,9 @@ int run_batch(const BatchOptions& o) {
     return std::tie(a.header.trainee, a.header.started_at, a.header.file) <
            std::tie(b.header.trainee, b.header.started_at, b.header.file);
   });
-
   try {
-    std::string summary = report::csv_header() + "\n";
-    for (const auto& s : scored) summary += report::csv_row(s.header, s.score) + "\n";
-    report::write_text(out / "summary.csv", summary);
-    std::string errors = "file,error\n";
-    for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
-    report::write_text(out / "errors.csv", errors);
-
-    // Learning curves follow a trainee's exams: by default trainee exercises only, and no
-    // attempt the trainee abandoned (summary.csv still lists every session).
-    std::vector<const Scored*> attempts;
-    for (const auto& s : scored) {
-      if (s.score.abandoned && !o.include_abandoned) continue;
-      if (s.header.mode != "trainee" && !o.all_modes) continue;
-      attempts.push_back(&s);
-    }
-    std::vector<report::TraineeCurve> curves;
-    for (std::size_t begin = 0; begin < attempts.size();) {
-      std::size_t end = begin;
-      report::TraineeCurve curve;
-      curve.trainee = attempts[begin]->header.trainee;
-      curve.file_stem = report::trainee_file_stem(curve.trainee);
-      std::vector<bool> passed;
-      for (; end < attempts.size() && attempts[end]->header.trainee == curve.trainee; ++end) {
-        curve.attempts.push_back(report::attempt_of(attempts[end]->header, attempts[end]->score));
-        passed.push_back(attempts[end]->score.passed);
-      }
-      curve.cusum = report::failure_cusum(passed);
-      report::write_text(out / "trainees" / (curve.file_stem + ".csv"), report::trainee_csv(curve.attempts, curve.cusum));
-      curve.png = report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum));
-      report::write_text(out / "trainees" / (curve.file_stem + ".png"),
-                         std::string_view(reinterpret_cast<const char*>(curve.png.data()), curve.png.size()));
-      curves.push_back(std::move(curve));
-      begin = end;
-    }
-    report::write_text(out / "cohort.html", report::cohort_html(curves, skipped));
+    write_summary(out, scored, skipped);
+    report::write_text(out / "cohort.html", report::cohort_html(write_curves(out, scored, o), skipped));
   } catch (const std::exception& e) {
     print_error(e.what());
     return kFailure;

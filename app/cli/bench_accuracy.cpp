@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "palpa/contact/contact.hpp"
 #include "palpa/mat/mat_body.hpp"
@@ -16,7 +17,6 @@
 namespace palpa::cli {
 namespace {
 
-using contact::Vec3;
 using Clock = std::chrono::steady_clock;
 
 struct TestBody {
@@ -144,12 +144,9 @@ void write_csv(const std::vector<AccuracyRow>& rows, const std::filesystem::path
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
   out << "body,method,levels,queries,ns_per_query,depth_error_max_m,depth_error_median_m,param_error_max,"
          "inside_wrong\n";
-  char line[256];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.1f,%.3e,%.3e,%.3e,%d\n", r.body.c_str(), r.method.c_str(), r.levels,
-                  r.queries, r.ns_per_query, r.depth_error_max, r.depth_error_median, r.param_error_max,
-                  r.inside_wrong);
-    out << line;
+    out << fmt::format("{},{},{},{},{:.1f},{:.3e},{:.3e},{:.3e},{}\n", r.body, r.method, r.levels, r.queries,
+                       r.ns_per_query, r.depth_error_max, r.depth_error_median, r.param_error_max, r.inside_wrong);
   }
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }

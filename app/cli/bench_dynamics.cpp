@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "palpa/deform/control_point_modification.hpp"
 #include "palpa/deform/oscillator.hpp"
 #include "palpa/mat/mat_body.hpp"
@@ -179,10 +181,8 @@ int run_bench_dynamics(const std::filesystem::path& out_dir) {
   csv << "integrator,dt_s,max_error_m,ns_per_point_step,stable\n";
   std::printf("%-20s %8s %14s %12s %7s\n", "integrator", "dt s", "max error m", "ns/point", "stable");
   for (const auto& r : dyn) {
-    char line[200];
-    std::snprintf(line, sizeof line, "%s,%.0e,%.3e,%.1f,%d\n", r.integrator.c_str(), r.dt, r.max_error, r.ns_per_step,
-                  r.stable ? 1 : 0);
-    csv << line;
+    csv << fmt::format("{},{:.0e},{:.3e},{:.1f},{}\n", r.integrator, r.dt, r.max_error, r.ns_per_step,
+                       r.stable ? 1 : 0);
     std::printf("%-20s %8.0e %14.3e %12.1f %7s\n", r.integrator.c_str(), r.dt, r.max_error, r.ns_per_step,
                 r.stable ? "yes" : "NO");
   }
@@ -190,10 +190,8 @@ int run_bench_dynamics(const std::filesystem::path& out_dir) {
   mcsv << "p_prime,q_prime,landing_error_rel,max_dp_over_d,overshoot,ns_per_modification\n";
   std::printf("\n%6s %6s %16s %14s %10s %8s\n", "p'", "q'", "landing error", "max|dP|/|D|", "overshoot", "ns");
   for (const auto& r : mod) {
-    char line[200];
-    std::snprintf(line, sizeof line, "%d,%d,%.3e,%.4f,%.4f,%.0f\n", r.pu, r.pv, r.landing_error, r.max_control,
-                  r.overshoot, r.ns);
-    mcsv << line;
+    mcsv << fmt::format("{},{},{:.3e},{:.4f},{:.4f},{:.0f}\n", r.pu, r.pv, r.landing_error, r.max_control, r.overshoot,
+                        r.ns);
     std::printf("%6d %6d %16.3e %14.4f %10.4f %8.0f\n", r.pu, r.pv, r.landing_error, r.max_control, r.overshoot, r.ns);
   }
 

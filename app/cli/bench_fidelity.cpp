@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "palpa/author/presets.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/plot/line_plot.hpp"
@@ -96,12 +98,9 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& path) 
   out << "reference,law,thickness_m,depth_m,depth_share,fem_n,palpa_n,error\n";
   for (const auto& r : rows) {
     for (std::size_t k = 0; k < r.fem.depth.size(); ++k) {
-      char line[256];
-      std::snprintf(line, sizeof line, "%s,%s,%.3f,%.6g,%.4f,%.6g,%.6g,%.5f\n", r.reference->file,
-                    mat::to_string(r.law), r.reference->thickness, r.fem.depth[k],
-                    r.fem.depth[k] / r.reference->thickness, r.fem.force[k], r.palpa[k],
-                    r.palpa[k] / r.fem.force[k] - 1.0);
-      out << line;
+      out << fmt::format("{},{},{:.3f},{:.6g},{:.4f},{:.6g},{:.6g},{:.5f}\n", r.reference->file, mat::to_string(r.law),
+                         r.reference->thickness, r.fem.depth[k], r.fem.depth[k] / r.reference->thickness,
+                         r.fem.force[k], r.palpa[k], r.palpa[k] / r.fem.force[k] - 1.0);
     }
   }
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
@@ -149,15 +148,11 @@ bool print_forces(const std::vector<Row>& rows, const std::filesystem::path& ref
 
 std::string onset_text(double onset) {
   if (onset < 0.0) return "never";
-  char text[16];
-  std::snprintf(text, sizeof text, "%.2f mm", onset * 1e3);
-  return text;
+  return fmt::format("{:.2f} mm", onset * 1e3);
 }
 
 std::string half_width_text(double width, double fem) {
-  char text[48];
-  std::snprintf(text, sizeof text, "%.1f mm (%+.1f mm)", width * 1e3, (width - fem) * 1e3);
-  return text;
+  return fmt::format("{:.1f} mm ({:+.1f} mm)", width * 1e3, (width - fem) * 1e3);
 }
 
 // The on-axis contrast and onset table; true when the calibrated law meets both marks on

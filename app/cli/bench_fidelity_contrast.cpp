@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "palpa/author/presets.hpp"
 #include "palpa/io/case_file.hpp"
@@ -56,8 +57,7 @@ std::vector<std::vector<double>> read_rows(const std::filesystem::path& path, st
       at = comma + 1;
     }
     if (row.size() != columns || !(row[0] > 0.0) || !(row[columns - 1] > 0.0)) {
-      throw std::runtime_error(path.string() + ": line " + std::to_string(number) + ": expected " +
-                               std::to_string(columns) + " numbers");
+      throw std::runtime_error(fmt::format("{}: line {}: expected {} numbers", path.string(), number, columns));
     }
     rows.push_back(std::move(row));
   }
@@ -105,7 +105,7 @@ std::vector<std::array<double, 2>> read_force_curve(const std::filesystem::path&
     double d = 0.0, f = 0.0;
     char comma = 0;
     if (!(row >> d >> comma >> f) || comma != ',' || !std::isfinite(d) || !std::isfinite(f) || d < 0.0) {
-      throw std::runtime_error(path.string() + ": line " + std::to_string(number) + ": expected depth_m,force_n");
+      throw std::runtime_error(fmt::format("{}: line {}: expected depth_m,force_n", path.string(), number));
     }
     if (d > 0.0) rows.push_back({d, f});
   }
@@ -143,11 +143,7 @@ void evaluate(std::vector<Inclusion>& rows, bool onsets) {
 }
 
 void write_onset(std::ofstream& out, double onset) {
-  if (onset >= 0.0) {
-    char cell[32];
-    std::snprintf(cell, sizeof cell, "%.5f", onset);
-    out << cell;
-  }
+  if (onset >= 0.0) out << fmt::format("{:.5f}", onset);
 }
 
 }  // namespace
@@ -156,7 +152,7 @@ double centre_force(const scene::Scene& scene, double depth, const scene::ProbeO
   std::array<double, 3> top{};
   scene.body(0).body.top().evaluate(0.5, 0.5, top);
   auto state = scene.make_state();
-  return scene.probe(scene::Vec3(top[0], top[1], top[2] - depth), state, options).force.total.norm();
+  return scene.probe(palpa::Vec3(top[0], top[1], top[2] - depth), state, options).force.total.norm();
 }
 
 bool contrast_met(double model, double fem) { return std::abs(model - fem) <= std::max(0.2 * (fem - 1.0), 0.02); }
@@ -219,10 +215,8 @@ void write_contrast_csv(const std::vector<Inclusion>& rows, const std::filesyste
   out << "inclusion_radius_m,inclusion_depth_m,modulus_ratio,fem_contrast,calibrated_contrast,paper_contrast,"
          "thickness_m,fem_onset_m,calibrated_onset_m,paper_onset_m\n";
   for (const auto& r : rows) {
-    char line[200];
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%g,%.5f,%.5f,%.5f,%.3f,", r.radius, r.depth, r.ratio, r.fem,
-                  r.calibrated, r.paper, r.thickness);
-    out << line;
+    out << fmt::format("{:.4f},{:.4f},{:g},{:.5f},{:.5f},{:.5f},{:.3f},", r.radius, r.depth, r.ratio, r.fem,
+                       r.calibrated, r.paper, r.thickness);
     write_onset(out, r.fem_onset);
     out << ',';
     write_onset(out, r.calibrated_onset);
@@ -238,10 +232,8 @@ void write_lateral_csv(const std::vector<Inclusion>& rows, const std::filesystem
   out << "inclusion_radius_m,inclusion_depth_m,modulus_ratio,offset_m,fem_contrast,calibrated_contrast,"
          "paper_contrast\n";
   for (const auto& r : rows) {
-    char line[200];
-    std::snprintf(line, sizeof line, "%.4f,%.4f,%g,%.4f,%.5f,%.5f,%.5f\n", r.radius, r.depth, r.ratio, r.offset, r.fem,
-                  r.calibrated, r.paper);
-    out << line;
+    out << fmt::format("{:.4f},{:.4f},{:g},{:.4f},{:.5f},{:.5f},{:.5f}\n", r.radius, r.depth, r.ratio, r.offset, r.fem,
+                       r.calibrated, r.paper);
   }
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "bench_fidelity_contrast.hpp"
 #include "palpa/scene/scene.hpp"
@@ -49,8 +50,7 @@ Growth compare(const TwinFiles& t, const std::filesystem::path& reference_dir) {
   const std::size_t n = std::min(stiff.size(), plain.size());
   for (std::size_t k = 0; k < n; ++k) {
     if (stiff[k][0] != plain[k][0]) {
-      throw std::runtime_error(std::string(t.stiff) + ": row " + std::to_string(k + 2) + ": depth differs from " +
-                               t.plain);
+      throw std::runtime_error(fmt::format("{}: row {}: depth differs from {}", t.stiff, k + 2, t.plain));
     }
     const double d = stiff[k][0];
     GrowthRow r{t.thickness, t.radius, t.depth, t.ratio, d, stiff[k][1] / plain[k][1],
@@ -76,10 +76,8 @@ void write_growth_csv(const std::vector<Growth>& twins, const std::filesystem::p
          "indenter\n";
   for (const auto& g : twins) {
     for (const auto& r : g.rows) {
-      char line[200];
-      std::snprintf(line, sizeof line, "%.3f,%.4f,%.4f,%g,%.5f,%.5f,%.5f,%s\n", r.thickness, r.radius, r.depth,
-                    r.ratio, r.press, r.fem, r.calibrated, g.finger ? "finger" : "pad");
-      out << line;
+      out << fmt::format("{:.3f},{:.4f},{:.4f},{:g},{:.5f},{:.5f},{:.5f},{}\n", r.thickness, r.radius, r.depth, r.ratio,
+                         r.press, r.fem, r.calibrated, g.finger ? "finger" : "pad");
     }
   }
   if (!out) throw std::runtime_error(path.string() + ": cannot write");

@@ -12,6 +12,8 @@
 #include <atomic>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "palpa/engine/drawn_scene.hpp"
 #include "palpa/engine/engine.hpp"
 #include "palpa/engine/realtime_loop.hpp"
@@ -256,14 +258,12 @@ int run_bench_table1(const Table1Options& options) {
                   static_cast<unsigned long long>(paced.ticks), paced.p99_period_us, paced.max_period_us,
                   paced.p99_compute_us);
     }
-    char row[512];
-    std::snprintf(row, sizeof row, "%d,%d,%.3f,%zu,%.3f,%.3f,%.3f,%.3f,%.0f,%.3f,%d,%.2f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f",
-                  spec.bodies, spec.mat_points, pre_ms, memory, dyn.p50_us, dyn.p99_us, nodyn.p50_us, nodyn.p99_us,
-                  max_rate, core_share, dyn.contact_ticks, paced.rate_hz, static_cast<unsigned long long>(paced.missed),
-                  static_cast<unsigned long long>(paced.ticks), dyn.display_p50_us, dyn.display_p99_us,
-                  nodyn.display_p50_us, nodyn.display_p99_us, dyn.serial_p99_us, nodyn.serial_p99_us,
-                  paced.p99_compute_us);
-    csv_rows.emplace_back(row);
+    csv_rows.push_back(fmt::format(
+        "{},{},{:.3f},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.0f},{:.3f},{},{:.2f},{},{},"
+        "{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}",
+        spec.bodies, spec.mat_points, pre_ms, memory, dyn.p50_us, dyn.p99_us, nodyn.p50_us, nodyn.p99_us, max_rate,
+        core_share, dyn.contact_ticks, paced.rate_hz, paced.missed, paced.ticks, dyn.display_p50_us, dyn.display_p99_us,
+        nodyn.display_p50_us, nodyn.display_p99_us, dyn.serial_p99_us, nodyn.serial_p99_us, paced.p99_compute_us));
   }
   std::printf("\nStep times over %.0f s of palpation visiting every body. p50/p99 dyn and nodyn: one haptic tick "
               "(device read, foot point and force on the rest bodies, governor) while a display thread follows the "

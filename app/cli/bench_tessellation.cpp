@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -104,24 +105,24 @@ Row measure(const std::string& state, const spline::BSplineSurface& top, const s
 }
 
 /// The probe 10 mm below the top surface over the middle of the skeleton (u = v = 1/2).
-contact::Vec3 probe_below_top(const mat::MatBody& body, double depth) {
+palpa::Vec3 probe_below_top(const mat::MatBody& body, double depth) {
   std::array<double, mat::kSkeletonChannels> sk{};
   body.skeleton().evaluate(0.5, 0.5, sk);
   double n[3] = {0.0, 0.0, 1.0};
   if (!mat::skeleton_normal(body.skeleton(), 0.5, 0.5, n)) throw std::runtime_error("no skeleton normal at (0.5, 0.5)");
-  const contact::Vec3 normal(n[0], n[1], n[2]);
-  return contact::Vec3(sk[mat::kX], sk[mat::kY], sk[mat::kZ]) + (std::max(0.0, sk[mat::kRadius]) - depth) * normal;
+  const palpa::Vec3 normal(n[0], n[1], n[2]);
+  return palpa::Vec3(sk[mat::kX], sk[mat::kY], sk[mat::kZ]) + (std::max(0.0, sk[mat::kRadius]) - depth) * normal;
 }
 
 /// Time of BodyMeshes::update for a body pressed anew before every update (its version
 /// changes each time): the display's cost per frame for one moving body. Median, ms.
-double ms_per_update(deform::DeformedBody& body, const contact::Contact& c, const contact::Vec3& q) {
+double ms_per_update(deform::DeformedBody& body, const contact::Contact& c, const palpa::Vec3& q) {
   render::BodyMeshes meshes;
   const render::TessellationOptions o;
   std::vector<double> times(201);
   for (std::size_t k = 0; k < times.size() + 5; ++k) {
     // Alternate between two press depths so that the surfaces really change.
-    const contact::Vec3 qk = q + (k % 2 == 0 ? 0.0 : 0.001) * c.outward;
+    const palpa::Vec3 qk = q + (k % 2 == 0 ? 0.0 : 0.001) * c.outward;
     body.press(c, qk);
     const auto t0 = Clock::now();
     meshes.update(body, o);
@@ -136,12 +137,10 @@ void write_csv(const std::vector<Row>& rows, const std::filesystem::path& path) 
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
   out << "state,tolerance_m,segments_u,segments_v,triangles,ms_per_body,max_deviation_m,within,uniform_triangles\n";
-  char line[256];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%.3e,%d,%d,%zu,%.4f,%.3e,%d,%zu\n", r.state.c_str(), r.tolerance,
-                  std::max(r.segments_u[0], r.segments_u[1]), std::max(r.segments_v[0], r.segments_v[1]), r.triangles,
-                  r.ms_per_body, r.max_deviation, r.within ? 1 : 0, r.uniform_triangles);
-    out << line;
+    out << fmt::format("{},{:.3e},{},{},{},{:.4f},{:.3e},{},{}\n", r.state, r.tolerance,
+                       std::max(r.segments_u[0], r.segments_u[1]), std::max(r.segments_v[0], r.segments_v[1]),
+                       r.triangles, r.ms_per_body, r.max_deviation, r.within ? 1 : 0, r.uniform_triangles);
   }
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
@@ -202,7 +201,7 @@ int run_bench_tessellation(const std::filesystem::path& out_dir, const std::file
   // The body pressed 10 mm in over the middle of its skeleton.
   deform::DeformedBody pressed(rest);
   deform::DeformedBody drawn(rest, engine::EngineOptions{}.deform);  // as the trainee window draws it
-  const contact::Vec3 q = probe_below_top(rest, 0.010);
+  const palpa::Vec3 q = probe_below_top(rest, 0.010);
   auto state = scene->make_state();
   const auto hit = scene->probe(q, state);
   const bool have_press = hit.body == 0;
@@ -234,10 +233,9 @@ int run_bench_tessellation(const std::filesystem::path& out_dir, const std::file
   std::printf("%-8s %11s %17s %10s %10s %11s %13s %13s %6s\n", "state", "tolerance m", "segments t / b",
               "triangles", "uniform", "ms per body", "max dev m", "bound m", "within");
   for (const auto& r : rows) {
-    char segs[40];
-    std::snprintf(segs, sizeof segs, "%dx%d / %dx%d", r.segments_u[0], r.segments_v[0], r.segments_u[1],
-                  r.segments_v[1]);
-    std::printf("%-8s %11.2e %17s %10zu %10zu %11.4f %13.3e %13.3e %6s\n", r.state.c_str(), r.tolerance, segs,
+    const std::string segs =
+        fmt::format("{}x{} / {}x{}", r.segments_u[0], r.segments_v[0], r.segments_u[1], r.segments_v[1]);
+    std::printf("%-8s %11.2e %17s %10zu %10zu %11.4f %13.3e %13.3e %6s\n", r.state.c_str(), r.tolerance, segs.c_str(),
                 r.triangles, r.uniform_triangles, r.ms_per_body, r.max_deviation, r.bound, r.within ? "yes" : "NO");
   }
   if (have_press) {

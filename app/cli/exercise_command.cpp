@@ -11,9 +11,9 @@
 #include "commands.hpp"
 #include "exercise_replay.hpp"
 #include "palpa/options/number_checks.hpp"
-#include "palpa/exercise/exercise.hpp"
-#include "palpa/exercise/scripted_trainee.hpp"
-#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/scripted/exercise.hpp"
+#include "palpa/scripted/scripted_trainee.hpp"
+#include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/data_paths.hpp"
 #include "palpa/scene/scene.hpp"
@@ -40,25 +40,34 @@ std::uint64_t fresh_seed() {
   return (static_cast<std::uint64_t>(device()) << 32) ^ device();
 }
 
-int run_exercise_command(ExerciseCliOptions o) {
-  // Before palpating: a report that could not be written is said now, not after the run.
-  std::vector<std::filesystem::path> inputs{o.case_path};
-  if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
-  if (auto why = report_refusal(o.out_path, o.report, inputs); !why.empty()) {
-    print_error("--report: " + why);
-    return kBadInput;
+// Runs the exercise into the session file at `out_path`, one commit per simulated second
+// as a live recording makes. kOk or the exit code.
+int record_exercise(const scene::Scene& scene, scripted::ScriptedTrainee& trainee, const session::SessionInfo& info,
+                    const std::string& out_path, scripted::ExerciseSummary& summary) {
+  try {
+    session::SessionWriter writer(out_path, info);
+    std::uint64_t since_commit = 0;
+    summary = scripted::run_exercise(
+        scene, trainee,
+        [&](const engine::Sample& s) {
+          writer.append(s);
+          if (++since_commit == 1000) {
+            writer.commit();
+            since_commit = 0;
+          }
+        },
+        [&](const session::Event& e) { writer.event(e); });
+    writer.finish();
+  } catch (const session::SessionError& e) {
+    print_error(e.what());
+    return e.where() == "file" ? kBadInput : kFailure;
   }
-  if (o.device.rfind("replay:", 0) == 0) {
-    if (!o.case_path.empty()) {
-      print_error("exercise: CASE is not used with --device replay: (the session's own case, as placed, is replayed)");
-      return kBadInput;
-    }
-    if (o.device.size() == 7) {
-      print_error("--device: replay needs a session file: replay:SESSION");
-      return kBadInput;
-    }
-    return run_replay_exercise(o.device.substr(7), o.trainee, o.out_path, o.json, o.report);
-  }
+  return kOk;
+}
+
+// The arguments of a scripted exercise: a live device is refused, CASE resolved (a bare
+// name is a bundled case), the trainee and the style checked. kOk or the exit code.
+int check_scripted_arguments(ExerciseCliOptions& o) {
   if (o.device != "scripted") {
     print_error("--device: " + o.device +
                 ": a headless exercise is scripted or replay:SESSION; a live device palpates in the GUI (palpa "
@@ -80,44 +89,51 @@ int run_exercise_command(ExerciseCliOptions o) {
     print_error("exercise: --trainee is required");
     return kBadInput;
   }
-  const auto style = exercise::style_from_string(o.style);
+  const auto style = scripted::style_from_string(o.style);
   if (!style) {
     print_error("--style: unknown style \"" + o.style + "\" (expert, sloppy or light)");
     return kBadInput;
   }
+  return kOk;
+}
+
+int run_exercise_command(ExerciseCliOptions o) {
+  // Before palpating: a report that could not be written is said now, not after the run.
+  std::vector<std::filesystem::path> inputs{o.case_path};
+  if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
+  if (auto why = report_refusal(o.out_path, o.report, inputs); !why.empty()) {
+    print_error("--report: " + why);
+    return kBadInput;
+  }
+  if (o.device.rfind("replay:", 0) == 0) {
+    if (!o.case_path.empty()) {
+      print_error("exercise: CASE is not used with --device replay: (the session's own case, as placed, is replayed)");
+      return kBadInput;
+    }
+    if (o.device.size() == 7) {
+      print_error("--device: replay needs a session file: replay:SESSION");
+      return kBadInput;
+    }
+    return run_replay_exercise(o.device.substr(7), o.trainee, o.out_path, o.json, o.report);
+  }
+  if (const int status = check_scripted_arguments(o); status != kOk) return status;
+  const auto style = scripted::style_from_string(o.style);
   const std::uint64_t seed = o.seed ? *o.seed : fresh_seed();
   std::unique_ptr<scene::Scene> scene;
   io::CaseFile placed;
   try {
-    placed = exercise::place_tumours(io::load_case(o.case_path), seed, o.case_path);
+    placed = scripted::place_tumours(io::load_case(o.case_path), seed, o.case_path);
     scene = std::make_unique<scene::Scene>(scene::Scene::build(placed, o.case_path));
   } catch (const io::CaseError& e) {
     for (const auto& line : e.lines()) print_error(line);
     return kBadInput;
   }
 
-  exercise::ScriptedTrainee trainee(*scene, exercise::whole_top_contours(*scene), *style, seed);
-  const auto info = exercise::exercise_session_info(placed, o.case_path, seed, *style, o.trainee,
-                                                    trainee.capabilities().name, exercise::iso8601_utc_now());
-  exercise::ExerciseSummary summary;
-  try {
-    session::SessionWriter writer(o.out_path, info);
-    std::uint64_t since_commit = 0;
-    summary = exercise::run_exercise(
-        *scene, trainee,
-        [&](const engine::Sample& s) {
-          writer.append(s);
-          if (++since_commit == 1000) {  // one commit per simulated second, as a live recording
-            writer.commit();
-            since_commit = 0;
-          }
-        },
-        [&](const session::Event& e) { writer.event(e); });
-    writer.finish();
-  } catch (const session::SessionError& e) {
-    print_error(e.what());
-    return e.where() == "file" ? kBadInput : kFailure;
-  }
+  scripted::ScriptedTrainee trainee(*scene, scripted::whole_top_contours(*scene), *style, seed);
+  const auto info = scripted::exercise_session_info(placed, o.case_path, seed, *style, o.trainee,
+                                                    trainee.capabilities().name, scripted::iso8601_utc_now());
+  scripted::ExerciseSummary summary;
+  if (const int status = record_exercise(*scene, trainee, info, o.out_path, summary); status != kOk) return status;
   std::fprintf(stderr, "exercise: %s palpated %s (seed %llu): %.1f s, %llu ticks, %lld marks, recorded in %s\n",
                o.trainee.c_str(), o.case_path.c_str(), static_cast<unsigned long long>(seed), summary.duration,
                static_cast<unsigned long long>(summary.ticks), static_cast<long long>(summary.marks),

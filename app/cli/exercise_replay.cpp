@@ -10,7 +10,7 @@
 #include "palpa/device/device_error.hpp"
 #include "palpa/device/replay_device.hpp"
 #include "palpa/engine/engine.hpp"
-#include "palpa/exercise/exercise.hpp"
+#include "palpa/scripted/exercise.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/session/session_reader.hpp"
@@ -47,7 +47,7 @@ int run_replay_exercise(const std::string& session_path, const std::string& trai
   info.trainee = trainee.empty() ? recorded.info.trainee : trainee;
   info.device = replay->capabilities().name;
   info.software_version = palpa::kVersion;
-  info.started_at = exercise::iso8601_utc_now();
+  info.started_at = scripted::iso8601_utc_now();
   info.extra["replayed_from"] = session_path;
   info.extra["mode"] = "replay";
   info.extra["replayed_session_id"] = recorded.info.id;

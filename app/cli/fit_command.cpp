@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "commands.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/csv.hpp"
@@ -25,11 +27,7 @@ struct FitCommandOptions {
 
 std::string knot_list(const std::vector<double>& knots) {
   std::string s = "[";
-  char buf[32];
-  for (std::size_t i = 0; i < knots.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", knots[i]);
-    s += buf;
-  }
+  for (std::size_t i = 0; i < knots.size(); ++i) s += fmt::format("{}{:.6g}", i ? ", " : "", knots[i]);
   return s + "]";
 }
 
@@ -45,10 +43,8 @@ int print_eval(const spline::BSplineSurface& surface, bool skeleton, const std::
     for (std::size_t c = 0; c < 2; ++c) {
       const double x = uv.rows[r][c];
       if (x < 0.0 || x > 1.0) {
-        char value[32];
-        std::snprintf(value, sizeof value, "%.17g", x);
-        print_error(uv_path + ": line " + std::to_string(uv.line_numbers[r]) + ": " + uv.columns[c] + " = " + value +
-                    " is outside [0, 1]");
+        print_error(fmt::format("{}: line {}: {} = {:.17g} is outside [0, 1]", uv_path, uv.line_numbers[r],
+                                uv.columns[c], x));
         return kBadInput;
       }
     }
@@ -115,7 +111,7 @@ int run_fit(const FitCommandOptions& o) {
     }
     body = std::make_unique<mat::MatBody>(mat::MatBody::fit(file.bodies[index], fit_options));
   } catch (const mat::FitError& e) {
-    print_error(o.case_path + ": /bodies/" + std::to_string(index) + ": cannot fit: " + e.what());
+    print_error(fmt::format("{}: /bodies/{}: cannot fit: {}", o.case_path, index, e.what()));
     return kBadInput;
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

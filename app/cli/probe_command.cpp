@@ -52,7 +52,7 @@ int run_probe(const ProbeCommandOptions& o) {
 
   std::printf("x,y,z,inside,body,u,v,depth,fx,fy,fz\n");
   for (const auto& p : points.rows) {
-    const contact::Vec3 q(p[0], p[1], p[2]);
+    const palpa::Vec3 q(p[0], p[1], p[2]);
     const auto r = scene->probe(q, state, options);
     std::printf("%.17g,%.17g,%.17g,%d,%s,", p[0], p[1], p[2], r.body >= 0 ? 1 : 0,
                 r.body >= 0 ? scene->body(static_cast<std::size_t>(r.body)).body.id().c_str() : "");

@@ -22,7 +22,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/csv.hpp"
 #include "palpa/io/json_text.hpp"
-#include "palpa/exercise/exercise.hpp"
+#include "palpa/scripted/exercise.hpp"
 #include "palpa/session/session.hpp"
 #include "palpa/session/session_writer.hpp"
 #include "palpa/version.hpp"
@@ -61,27 +61,74 @@ bool read_timed_points(const std::string& path, TimeOrder order, engine::Traject
   }
 }
 
-int run_simulate(const SimulateOptions& o) {
+// --out must not replace an input, nor an existing file without --force.
+int check_outputs(const SimulateOptions& o) {
   if (o.out_path.empty() && o.session_path.empty()) {
     print_error("simulate: --out or --session is required (see palpa-cli simulate --help)");
     return kBadInput;
   }
-  if (!o.out_path.empty()) {
-    std::vector<std::filesystem::path> outputs{o.out_path};
-    if (!o.marks_path.empty()) outputs.emplace_back(o.out_path + ".marks.csv");
-    std::vector<std::filesystem::path> inputs{o.case_path, o.trajectory_path, o.marks_path, o.falcon_firmware,
-                                              o.session_path};
-    if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
-    if (auto why = refusal_to_write(outputs, o.force, inputs); !why.empty()) {
-      print_error("--out: " + why);
-      return kBadInput;
-    }
+  if (o.out_path.empty()) return kOk;
+  std::vector<std::filesystem::path> outputs{o.out_path};
+  if (!o.marks_path.empty()) outputs.emplace_back(o.out_path + ".marks.csv");
+  std::vector<std::filesystem::path> inputs{o.case_path, o.trajectory_path, o.marks_path, o.falcon_firmware,
+                                            o.session_path};
+  if (o.device.rfind("replay:", 0) == 0) inputs.emplace_back(o.device.substr(7));
+  if (auto why = refusal_to_write(outputs, o.force, inputs); !why.empty()) {
+    print_error("--out: " + why);
+    return kBadInput;
   }
-  std::unique_ptr<scene::Scene> scene;
+  return kOk;
+}
+
+// What a run drives the engine with: the case, and the trajectory or a device.
+struct SimulateInputs {
   io::CaseFile case_file;
+  std::unique_ptr<scene::Scene> scene;
+  engine::Trajectory trajectory, marks;
+  std::unique_ptr<engine::Device> chosen;  ///< the --device, when given
+  double duration = 0.0;                   ///< s of haptic time to run
+};
+
+// A device instead of the trajectory: a replayed session (its duration) or a live one
+// (--realtime for --duration seconds, its workspace over the first body).
+int open_chosen_device(const SimulateOptions& o, SimulateInputs& in) {
+  const bool replay = o.device.rfind("replay:", 0) == 0;
+  if (!replay && (!o.realtime || !(o.duration > 0.0))) {
+    print_error("--device " + o.device + ": a live device needs --realtime and --duration SECONDS");
+    return kBadInput;
+  }
+  if (o.device == "virtual") {
+    print_error("--device virtual: nothing steers the virtual device here (the GUI's mouse does)");
+    return kBadInput;
+  }
   try {
-    case_file = io::load_case(o.case_path);
-    scene = std::make_unique<scene::Scene>(scene::Scene::build(case_file, o.case_path));
+    device::OpenOptions open;
+    open.falcon.firmware = o.falcon_firmware;
+    open.progress = [](const std::string& line) { std::fprintf(stderr, "simulate: %s\n", line.c_str()); };
+    in.chosen = device::open_device(o.device, open);
+  } catch (const device::DeviceError& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const session::SessionError& e) {
+    print_error(e.what());
+    return kBadInput;
+  }
+  if (replay) {
+    in.duration = dynamic_cast<device::ReplayDevice&>(*in.chosen).duration();
+    return kOk;
+  }
+  in.duration = o.duration;
+  if (in.scene->size() > 0) {
+    const auto& b = in.scene->body(0).bounds;
+    in.chosen->place_workspace(palpa::Vec3(0.5 * (b.lo.x() + b.hi.x()), 0.5 * (b.lo.y() + b.hi.y()), b.hi.z()), 1.0);
+  }
+  return kOk;
+}
+
+int load_inputs(const SimulateOptions& o, SimulateInputs& in) {
+  try {
+    in.case_file = io::load_case(o.case_path);
+    in.scene = std::make_unique<scene::Scene>(scene::Scene::build(in.case_file, o.case_path));
   } catch (const io::CaseError& e) {
     for (const auto& line : e.lines()) print_error(line);
     return kBadInput;
@@ -90,153 +137,163 @@ int run_simulate(const SimulateOptions& o) {
     print_error("simulate: give either --trajectory or --device (see palpa-cli simulate --help)");
     return kBadInput;
   }
-  engine::Trajectory trajectory;
-  if (!o.trajectory_path.empty() && !read_timed_points(o.trajectory_path, TimeOrder::Increasing, trajectory)) return kBadInput;
-  // A device instead of the trajectory: a replayed session (its duration) or a live one
-  // (--realtime for --duration seconds, its workspace over the first body).
-  std::unique_ptr<engine::Device> chosen;
-  double duration = trajectory.duration();
+  if (!o.trajectory_path.empty() && !read_timed_points(o.trajectory_path, TimeOrder::Increasing, in.trajectory))
+    return kBadInput;
+  in.duration = in.trajectory.duration();
   if (!o.device.empty()) {
-    const bool replay = o.device.rfind("replay:", 0) == 0;
-    if (!replay && (!o.realtime || !(o.duration > 0.0))) {
-      print_error("--device " + o.device + ": a live device needs --realtime and --duration SECONDS");
-      return kBadInput;
-    }
-    if (o.device == "virtual") {
-      print_error("--device virtual: nothing steers the virtual device here (the GUI's mouse does)");
-      return kBadInput;
-    }
-    try {
-      device::OpenOptions open;
-      open.falcon.firmware = o.falcon_firmware;
-      open.progress = [](const std::string& line) { std::fprintf(stderr, "simulate: %s\n", line.c_str()); };
-      chosen = device::open_device(o.device, open);
-    } catch (const device::DeviceError& e) {
-      print_error(e.what());
-      return kBadInput;
-    } catch (const session::SessionError& e) {
-      print_error(e.what());
-      return kBadInput;
-    }
-    if (replay) {
-      duration = dynamic_cast<device::ReplayDevice&>(*chosen).duration();
-    } else {
-      duration = o.duration;
-      if (scene->size() > 0) {
-        const auto& b = scene->body(0).bounds;
-        chosen->place_workspace(engine::Vec3(0.5 * (b.lo.x() + b.hi.x()), 0.5 * (b.lo.y() + b.hi.y()), b.hi.z()), 1.0);
+    if (const int status = open_chosen_device(o, in); status != kOk) return status;
+  }
+  if (!o.marks_path.empty() && !read_timed_points(o.marks_path, TimeOrder::NotDecreasing, in.marks))
+    return kBadInput;
+  return kOk;
+}
+
+// Where the ticks go: the CSV of --out and the session of --session, with the trainee's
+// marks as Mark events at their times, in order, between the ticks.
+class SimulateSink {
+ public:
+  SimulateSink(const SimulateOptions& o, const SimulateInputs& in) : o_(o), in_(in) {}
+
+  int open(const std::string& device_name) {
+    if (!o_.out_path.empty()) {
+      writer_ = std::make_unique<SampleCsvWriter>(o_.out_path);
+      if (!writer_->ok()) {
+        print_error(o_.out_path + ": cannot write");
+        return kFailure;
       }
     }
-  }
-  engine::Trajectory marks;
-  if (!o.marks_path.empty() && !read_timed_points(o.marks_path, TimeOrder::NotDecreasing, marks)) return kBadInput;
-
-  engine::EngineOptions options;
-  options.rate_hz = o.rate;
-  options.dynamics = !o.no_dynamics;
-  options.shear = !o.no_shear;
-  engine::ScriptedDevice scripted(trajectory);
-  engine::Device& device = chosen ? *chosen : scripted;
-  engine::Engine eng(*scene, device, options);
-
-  std::unique_ptr<SampleCsvWriter> writer;
-  if (!o.out_path.empty()) {
-    writer = std::make_unique<SampleCsvWriter>(o.out_path);
-    if (!writer->ok()) {
-      print_error(o.out_path + ": cannot write");
-      return kFailure;
-    }
-  }
-  std::unique_ptr<session::SessionWriter> recording;
-  if (!o.session_path.empty()) {
-    session::SessionInfo info;
-    info.trainee = o.trainee;
-    info.device = device.capabilities().name;
-    info.software_version = palpa::kVersion;
-    info.started_at = exercise::iso8601_utc_now();
-    info.rate_hz = o.rate;
-    info.case_source = o.case_path;
-    info.case_document = io::to_json(case_file);
-    info.extra = {{"recorded_by", "palpa-cli simulate"}, {"mode", "simulated"}};
-    if (o.device.empty()) {
-      info.extra["trajectory"] = o.trajectory_path;
-    } else {
-      info.extra["device_id"] = o.device;
-    }
+    if (o_.session_path.empty()) return kOk;
     try {
-      recording = std::make_unique<session::SessionWriter>(o.session_path, info);
+      recording_ = std::make_unique<session::SessionWriter>(o_.session_path, session_info(device_name));
       session::Event start;
       start.kind = session::EventKind::Start;
-      recording->event(start);
+      recording_->event(start);
     } catch (const session::SessionError& e) {
       print_error(e.what());
       return e.where() == "file" ? kBadInput : kFailure;
     }
+    return kOk;
   }
-  // The trainee's marks become Mark events at their times, in order, between the ticks.
-  std::size_t next_mark = 0;
-  const auto record_marks_until = [&](double t) {
-    for (; next_mark < marks.t.size() && marks.t[next_mark] <= t; ++next_mark) {
+
+  void write(const engine::Sample& s) {
+    if (writer_) writer_->write(s, in_.scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
+    if (recording_) {
+      record_marks_until(s.t);
+      recording_->append(s);
+      if (ticks_ % kCommitEvery == kCommitEvery - 1) recording_->commit();
+    }
+    last_t_ = s.t;
+    ++ticks_;
+  }
+
+  int close() {
+    if (writer_ && !writer_->close()) {
+      print_error(o_.out_path + ": write failed (disk full?)");
+      return kFailure;
+    }
+    if (writer_ && !in_.marks.t.empty() && !write_marks_csv(o_.out_path + ".marks.csv", in_.marks)) {
+      print_error(o_.out_path + ".marks.csv: cannot write");
+      return kFailure;
+    }
+    if (recording_) {
+      record_marks_until(std::numeric_limits<double>::infinity());  // marks placed after the last tick
+      session::Event end;
+      end.kind = session::EventKind::End;
+      end.t = last_t_;
+      end.note = o_.device.empty() ? "trajectory ended" : "device run ended";
+      recording_->event(end);
+      recording_->finish();
+    }
+    return kOk;
+  }
+
+  std::uint64_t ticks() const { return ticks_; }
+
+ private:
+  static constexpr std::uint64_t kCommitEvery = 250;  // ticks per session transaction (0.25 s at 1 kHz)
+
+  session::SessionInfo session_info(const std::string& device_name) const {
+    session::SessionInfo info;
+    info.trainee = o_.trainee;
+    info.device = device_name;
+    info.software_version = palpa::kVersion;
+    info.started_at = scripted::iso8601_utc_now();
+    info.rate_hz = o_.rate;
+    info.case_source = o_.case_path;
+    info.case_document = io::to_json(in_.case_file);
+    info.extra = {{"recorded_by", "palpa-cli simulate"}, {"mode", "simulated"}};
+    if (o_.device.empty()) {
+      info.extra["trajectory"] = o_.trajectory_path;
+    } else {
+      info.extra["device_id"] = o_.device;
+    }
+    return info;
+  }
+
+  void record_marks_until(double t) {
+    const engine::Trajectory& marks = in_.marks;
+    for (; next_mark_ < marks.t.size() && marks.t[next_mark_] <= t; ++next_mark_) {
       session::Event mark;
       mark.kind = session::EventKind::Mark;
-      mark.t = marks.t[next_mark];
-      mark.mark = static_cast<std::int64_t>(next_mark + 1);
-      mark.position = {marks.position[next_mark].x(), marks.position[next_mark].y(), marks.position[next_mark].z()};
-      recording->event(mark);
+      mark.t = marks.t[next_mark_];
+      mark.mark = static_cast<std::int64_t>(next_mark_ + 1);
+      mark.position = {marks.position[next_mark_].x(), marks.position[next_mark_].y(),
+                       marks.position[next_mark_].z()};
+      recording_->event(mark);
     }
-  };
-  double last_t = 0.0;
-  std::uint64_t ticks = 0;
-  const auto write = [&](const engine::Sample& s) {
-    if (writer) writer->write(s, scene->body(static_cast<std::size_t>(s.body >= 0 ? s.body : 0)).body.id());
-    if (recording) {
-      record_marks_until(s.t);
-      recording->append(s);
-      if (ticks % 250 == 249) recording->commit();
-    }
-    last_t = s.t;
-    ++ticks;
-  };
+  }
+
+  const SimulateOptions& o_;
+  const SimulateInputs& in_;
+  std::unique_ptr<SampleCsvWriter> writer_;
+  std::unique_ptr<session::SessionWriter> recording_;
+  std::size_t next_mark_ = 0;
+  double last_t_ = 0.0;
+  std::uint64_t ticks_ = 0;
+};
+
+// The haptic thread paces the ticks; this thread is the writer, draining the ring.
+void run_realtime(engine::Engine& eng, double duration, SimulateSink& sink) {
+  auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
+  auto& loop = *loop_owner;
+  std::fprintf(stderr, "%s\n", loop.start().c_str());
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration);
+  engine::Sample s;
+  while (std::chrono::steady_clock::now() < end) {
+    while (loop.pop_sample(s)) sink.write(s);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  loop.stop();  // ramps the force to zero first
+  while (loop.pop_sample(s)) sink.write(s);
+  std::fprintf(stderr, "%s\n", loop.stats().summary().c_str());
+  if (loop.dropped_samples() > 0) {
+    std::fprintf(stderr, "simulate: %llu samples dropped (the writer fell behind)\n",
+                 static_cast<unsigned long long>(loop.dropped_samples()));
+  }
+}
+
+int run_simulate(const SimulateOptions& o) {
+  if (const int status = check_outputs(o); status != kOk) return status;
+  SimulateInputs in;
+  if (const int status = load_inputs(o, in); status != kOk) return status;
+  engine::EngineOptions options;
+  options.rate_hz = o.rate;
+  options.dynamics = !o.no_dynamics;
+  options.shear = !o.no_shear;
+  engine::ScriptedDevice scripted(in.trajectory);
+  engine::Device& device = in.chosen ? *in.chosen : scripted;
+  engine::Engine eng(*in.scene, device, options);
+
+  SimulateSink sink(o, in);
+  if (const int status = sink.open(device.capabilities().name); status != kOk) return status;
   if (o.realtime) {
-    // The haptic thread paces the ticks; this thread is the writer, draining the ring.
-    auto loop_owner = std::make_unique<engine::RealtimeLoop>(eng);  // 1.6 MB of rings: not on the stack
-    auto& loop = *loop_owner;
-    std::fprintf(stderr, "%s\n", loop.start().c_str());
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration);
-    engine::Sample s;
-    while (std::chrono::steady_clock::now() < end) {
-      while (loop.pop_sample(s)) write(s);
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    loop.stop();  // ramps the force to zero first
-    while (loop.pop_sample(s)) write(s);
-    std::fprintf(stderr, "%s\n", loop.stats().summary().c_str());
-    if (loop.dropped_samples() > 0) {
-      std::fprintf(stderr, "simulate: %llu samples dropped (the writer fell behind)\n",
-                   static_cast<unsigned long long>(loop.dropped_samples()));
-    }
+    run_realtime(eng, in.duration, sink);
   } else {
-    engine::run_fast(eng, duration, write);
+    engine::run_fast(eng, in.duration, [&sink](const engine::Sample& s) { sink.write(s); });
   }
-  if (writer && !writer->close()) {
-    print_error(o.out_path + ": write failed (disk full?)");
-    return kFailure;
-  }
-  if (writer && !marks.t.empty() && !write_marks_csv(o.out_path + ".marks.csv", marks)) {
-    print_error(o.out_path + ".marks.csv: cannot write");
-    return kFailure;
-  }
-  if (recording) {
-    record_marks_until(std::numeric_limits<double>::infinity());  // marks placed after the last tick
-    session::Event end;
-    end.kind = session::EventKind::End;
-    end.t = last_t;
-    end.note = o.device.empty() ? "trajectory ended" : "device run ended";
-    recording->event(end);
-    recording->finish();
-  }
+  if (const int status = sink.close(); status != kOk) return status;
   std::fprintf(stderr, "simulate: %llu ticks at %.0f Hz (%.3f s of trajectory) written to %s\n",
-               static_cast<unsigned long long>(ticks), o.rate, duration,
+               static_cast<unsigned long long>(sink.ticks()), o.rate, in.duration,
                (o.out_path.empty() ? o.session_path : o.out_path).c_str());
   return kOk;
 }

@@ -21,7 +21,7 @@
 #include "palpa/score/score.hpp"
 #include "palpa/session/session.hpp"
 #include "palpa/session/session_reader.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/mode_menu.hpp"
 #include "palpa/ui/review_window.hpp"
@@ -99,7 +99,7 @@ void AppWindows::add_device_menu(QMainWindow& window) {
 
 QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent) {
   last_error_.clear();
-  trainer::LiveOptions options;
+  live::LiveOptions options;
   options.trainee = settings_.trainee;
   options.mode = "trainee";
   options.seed = settings_.seed ? *settings_.seed : fresh_seed();
@@ -113,7 +113,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
     }
     options.device = open_chosen_device_with_progress(settings_.device, parent);
     const std::string source = case_path.toStdString();
-    auto exercise = std::make_unique<trainer::LiveExercise>(io::load_case(source), source, options);
+    auto exercise = std::make_unique<live::LiveExercise>(io::load_case(source), source, options);
     auto* window = new ui::TraineeWindow(std::move(exercise), file_name(case_path));
     first_trainee_ = false;
     adopt(*window);

@@ -12,13 +12,14 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <QApplication>
 #include <QEventLoop>
 #include <QTimer>
 #include <QWindow>
 
 #include "palpa/scene/table1_scenes.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
@@ -61,41 +62,40 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
-Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double seconds,
-            const std::filesystem::path& dir) {
-  trainer::LiveOptions options;
-  options.trainee = "bench";
-  options.mode = "bench";
-  options.engine.dynamics = dynamics;
-  options.session_path = dir / ("table1-" + std::to_string(spec.bodies) + (dynamics ? "-dyn" : "-nodyn") + ".palpa");
-  std::filesystem::remove(options.session_path);
-  auto exercise = std::make_unique<trainer::LiveExercise>(scene::make_table1_case(spec), "table1", options);
-  ui::TraineeWindow window(std::move(exercise), QString("Table 1, %1 bodies").arg(spec.bodies));
-  window.set_frame_interval(-1);  // this driver draws the frames, uncapped
-  if (zoomed) window.look_at_body(0);
-  window.show();
-  // Measure only once the view's native window is on screen: before that VTK's Render()
-  // returns at once and would count empty frames (seen on a loaded machine).
-  {
-    const auto shown_by = Clock::now() + std::chrono::seconds(10);
-    while (!window.view()->input()->isExposed() && Clock::now() < shown_by) {
-      QApplication::processEvents(QEventLoop::AllEvents, 20);
-    }
-    if (!window.view()->input()->isExposed()) throw std::runtime_error("the view was not shown within 10 s");
+// Measure only once the view's native window is on screen: before that VTK's Render()
+// returns at once and would count empty frames (seen on a loaded machine).
+void wait_until_shown(ui::TraineeWindow& window) {
+  const auto shown_by = Clock::now() + std::chrono::seconds(10);
+  while (!window.view()->input()->isExposed() && Clock::now() < shown_by) {
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
   }
+  if (!window.view()->input()->isExposed()) throw std::runtime_error("the view was not shown within 10 s");
+}
 
-  Row row;
-  row.bodies = spec.bodies;
-  row.mat_points = spec.mat_points;
-  row.dynamics = dynamics;
-  row.zoomed = zoomed;
+// What the measured frames add up to.
+struct FrameTotals {
   std::vector<double> periods;
   double tessellate = 0.0, upload = 0.0, render = 0.0, changed = 0.0, drawn = 0.0;
+  double cpu_used = 0.0;
+
+  void add(double period, const ui::TraineeWindow::FrameTimes& f) {
+    periods.push_back(period);
+    tessellate += f.tessellate;
+    upload += f.upload;
+    render += f.render;
+    changed += static_cast<double>(f.bodies_changed);
+    drawn += static_cast<double>(f.bodies_drawn);
+  }
+};
+
+// Drives the window's frames for `seconds` after a warm-up, the finger on the scene's script.
+FrameTotals drive_frames(ui::TraineeWindow& window, const scene::Table1Scene& spec, double seconds) {
+  FrameTotals totals;
   int warmup = 5;  // the first frames compile shaders and upload every body
   const auto begin = Clock::now();
   auto last = begin;
   auto measured_from = begin;
-  double cpu_from = 0.0, cpu_used = 0.0;
+  double cpu_from = 0.0;
   QEventLoop loop;
   QTimer tick;
   // A zero timer fires whenever the event loop is idle, so Qt still composes and shows
@@ -104,15 +104,9 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
     const auto now = Clock::now();
     if (warmup == 0) {
       // The period since the last tick covers the frame drawn then (window.last_frame()).
-      periods.push_back(std::chrono::duration<double>(now - last).count());
-      const auto& f = window.last_frame();
-      tessellate += f.tessellate;
-      upload += f.upload;
-      render += f.render;
-      changed += static_cast<double>(f.bodies_changed);
-      drawn += static_cast<double>(f.bodies_drawn);
+      totals.add(std::chrono::duration<double>(now - last).count(), window.last_frame());
       if (now - measured_from >= std::chrono::duration<double>(seconds)) {
-        cpu_used = process_cpu_seconds() - cpu_from;
+        totals.cpu_used = process_cpu_seconds() - cpu_from;
         loop.quit();
         return;
       }
@@ -128,27 +122,53 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
   tick.start(0);
   loop.exec();
   tick.stop();
+  return totals;
+}
 
+void fill_frame_figures(const FrameTotals& totals, Row& row) {
+  row.frames = static_cast<int>(totals.periods.size());
+  if (totals.periods.empty()) return;
+  double total = 0.0;
+  for (double p : totals.periods) total += p;
+  const double n = static_cast<double>(totals.periods.size());
+  row.fps_mean = n / total;
+  const double p95 = percentile(totals.periods, 0.95);
+  row.frame_p95_ms = p95 * 1e3;
+  row.fps_p5 = p95 > 0.0 ? 1.0 / p95 : 0.0;
+  row.tessellate_ms = totals.tessellate / n * 1e3;
+  row.upload_ms = totals.upload / n * 1e3;
+  row.render_ms = totals.render / n * 1e3;
+  row.bodies_changed = totals.changed / n;
+  row.bodies_drawn = totals.drawn / n;
+  row.cpu_ms = totals.cpu_used / n * 1e3;
+}
+
+Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double seconds,
+            const std::filesystem::path& dir) {
+  live::LiveOptions options;
+  options.trainee = "bench";
+  options.mode = "bench";
+  options.engine.dynamics = dynamics;
+  options.session_path = dir / fmt::format("table1-{}{}.palpa", spec.bodies, dynamics ? "-dyn" : "-nodyn");
+  std::filesystem::remove(options.session_path);
+  auto exercise = std::make_unique<live::LiveExercise>(scene::make_table1_case(spec), "table1", options);
+  ui::TraineeWindow window(std::move(exercise), QString("Table 1, %1 bodies").arg(spec.bodies));
+  window.set_frame_interval(-1);  // this driver draws the frames, uncapped
+  if (zoomed) window.look_at_body(0);
+  window.show();
+  wait_until_shown(window);
+  const FrameTotals totals = drive_frames(window, spec, seconds);
+
+  Row row;
+  row.bodies = spec.bodies;
+  row.mat_points = spec.mat_points;
+  row.dynamics = dynamics;
+  row.zoomed = zoomed;
   const auto& stats = window.exercise().loop_stats();
   row.ticks = stats.ticks();
   row.missed = stats.missed();
   row.haptic_hz = stats.mean_period() > 0.0 ? 1.0 / stats.mean_period() : 0.0;
-  row.frames = static_cast<int>(periods.size());
-  if (!periods.empty()) {
-    double total = 0.0;
-    for (double p : periods) total += p;
-    const double n = static_cast<double>(periods.size());
-    row.fps_mean = n / total;
-    const double p95 = percentile(periods, 0.95);
-    row.frame_p95_ms = p95 * 1e3;
-    row.fps_p5 = p95 > 0.0 ? 1.0 / p95 : 0.0;
-    row.tessellate_ms = tessellate / n * 1e3;
-    row.upload_ms = upload / n * 1e3;
-    row.render_ms = render / n * 1e3;
-    row.bodies_changed = changed / n;
-    row.bodies_drawn = drawn / n;
-    row.cpu_ms = cpu_used / n * 1e3;
-  }
+  fill_frame_figures(totals, row);
   window.setProperty(ui::TraineeWindow::kCloseWithoutAsking, true);
   window.close();  // finishes the session; the file is only a by-product
   std::filesystem::remove(options.session_path);

@@ -15,6 +15,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <QApplication>
 #include <QSurfaceFormat>
 #include <QVTKOpenGLNativeWidget.h>
@@ -28,7 +29,7 @@
 #include "palpa/io/data_paths.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/screenshot.hpp"
@@ -137,141 +138,114 @@ int run_instructor(int argc, char** argv, const std::string& case_path, const st
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line of `palpa`.
+struct GuiOptions {
   std::string case_path = palpa::io::bundled_case_path("default.json").string();  // installed or build tree
   std::string mode = "trainee";
   std::string session_path;
   std::string trainee;
   std::optional<std::uint64_t> seed;
   std::string screenshot;
-
-  CLI::App cli{"Palpa: find the hidden tumour by palpating a soft body with the mouse (the wheel sets how deep you "
-               "press), mark it with M, finish for your score card.",
-               "palpa"};
-  cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
-  cli.add_option("--case", case_path, "case file (JSON; default: the bundled data/cases/default.json)");
-  cli.add_option("--mode", mode,
-                 "trainee, instructor (author a case: --case FILE to edit it, default a new breast) or review")
-      ->check(CLI::IsMember({"trainee", "instructor", "review"}));
-  cli.add_option("--session", session_path,
-                 "trainee: session file to record (never overwritten; default "
-                 "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
-  cli.add_option("--trainee", trainee, "trainee id recorded in the session (default: $USER)");
-  cli.add_option("--seed", seed, "seed for placing the case's randomized tumours (default: a fresh one)")
-      ->check(palpa::options::seed_value());
   palpa::gui::DeviceChoice device;
-  cli.add_option("--device", device.id,
-                 "trainee: the device to palpate with, an id from 'palpa-cli devices' (virtual = the mouse, "
-                 "spacemouse, falcon, replay:SESSION; default virtual); the Device menu changes it for later exercises");
-  cli.add_option("--falcon-firmware", device.falcon_firmware,
-                 "with --device falcon: the Falcon firmware file to upload (you supply it; see docs/devices.md)");
-  cli.add_option("--screenshot", screenshot,
-                 "render the window once at its default size, save this PNG and exit (no session is recorded)");
   bool bench = false;
   palpa::gui::FrameBenchOptions bench_options;
   std::string bench_csv;
-  cli.add_flag("--bench", bench,
+};
+
+void add_options(CLI::App& cli, GuiOptions& o) {
+  cli.set_version_flag("--version", std::string("palpa ") + palpa::kVersion);
+  cli.add_option("--case", o.case_path, "case file (JSON; default: the bundled data/cases/default.json)");
+  cli.add_option("--mode", o.mode,
+                 "trainee, instructor (author a case: --case FILE to edit it, default a new breast) or review")
+      ->check(CLI::IsMember({"trainee", "instructor", "review"}));
+  cli.add_option("--session", o.session_path,
+                 "trainee: session file to record (never overwritten; default "
+                 "~/.local/share/palpa/sessions/trainee-UTCTIME.palpa); review: the session file to replay");
+  cli.add_option("--trainee", o.trainee, "trainee id recorded in the session (default: $USER)");
+  cli.add_option("--seed", o.seed, "seed for placing the case's randomized tumours (default: a fresh one)")
+      ->check(palpa::options::seed_value());
+  cli.add_option("--device", o.device.id,
+                 "trainee: the device to palpate with, an id from 'palpa-cli devices' (virtual = the mouse, "
+                 "spacemouse, falcon, replay:SESSION; default virtual); the Device menu changes it for later exercises");
+  cli.add_option("--falcon-firmware", o.device.falcon_firmware,
+                 "with --device falcon: the Falcon firmware file to upload (you supply it; see docs/devices.md)");
+  cli.add_option("--screenshot", o.screenshot,
+                 "render the window once at its default size, save this PNG and exit (no session is recorded)");
+  cli.add_flag("--bench", o.bench,
                "measure the frame rate of the paper's Table 1 scenes (1-35 bodies) with the haptic loop at 1 kHz "
                "and a scripted finger, dynamics on and off; print a table and exit");
-  cli.add_option("--seconds", bench_options.seconds, "with --bench: seconds measured per scene and mode (default 3)")
+  cli.add_option("--seconds", o.bench_options.seconds, "with --bench: seconds measured per scene and mode (default 3)")
       ->check(palpa::options::finite_positive(3600.0, "s"));
-  cli.add_option("--csv", bench_csv, "with --bench: also write the rows to this CSV file");
-  cli.add_option("--max-bodies", bench_options.max_bodies,
+  cli.add_option("--csv", o.bench_csv, "with --bench: also write the rows to this CSV file");
+  cli.add_option("--max-bodies", o.bench_options.max_bodies,
                  "with --bench: only the scenes with at most this many bodies (default: all)")
       ->check(palpa::options::integer_in(1, 1000));
   cli.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.");
+}
+
+int run_bench(int argc, char** argv, GuiOptions& o) {
+  if (!o.bench_csv.empty()) o.bench_options.csv = o.bench_csv;
+  init_gui_format();
+  QApplication app(argc, argv);
   try {
-    cli.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return cli.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return cli.exit(e);
-  } catch (const CLI::ParseError& e) {
-    print_error(std::string(e.what()) + " (see palpa --help)");
-    return kBadInput;
+    return palpa::gui::run_frame_bench(o.bench_options);
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kFailure;
   }
+}
 
-  if (bench) {
-    if (!bench_csv.empty()) bench_options.csv = bench_csv;
-    init_gui_format();
-    QApplication app(argc, argv);
-    try {
-      return palpa::gui::run_frame_bench(bench_options);
-    } catch (const std::exception& e) {
-      print_error(e.what());
-      return kFailure;
-    }
-  }
-  if (!bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0) {
-    print_error("--seconds, --csv and --max-bodies go with --bench (see palpa --help)");
-    return kBadInput;
-  }
-  if (trainee.empty()) {
-    const char* user = std::getenv("USER");
-    trainee = user && *user ? user : "trainee";
-  }
-  // What every trainee window opened from a File menu uses (a fresh seed and session
-  // file per exercise unless --seed is given).
-  const palpa::gui::TraineeSettings settings{trainee, seed, {}, device};
-  if (mode == "review") return run_review(argc, argv, session_path, screenshot, settings);
-  if (mode == "instructor") {
-    if (!session_path.empty()) {
-      print_error("--session goes with trainee or review mode; \"Try it\" records in the default sessions folder");
-      return kBadInput;
-    }
-    return run_instructor(argc, argv, cli.count("--case") > 0 ? case_path : std::string(), screenshot, settings);
-  }
-
-  palpa::trainer::LiveOptions options;
-  options.trainee = trainee;
-  options.mode = mode;
-  if (seed) {
-    options.seed = *seed;
+// The live exercise of the trainee mode, before any window: the seed, the session file
+// (never overwritten), the device and the case. Null after printing why it cannot start.
+std::unique_ptr<palpa::live::LiveExercise> trainee_exercise(const GuiOptions& o, int& status) {
+  palpa::live::LiveOptions options;
+  options.trainee = o.trainee;
+  options.mode = o.mode;
+  if (o.seed) {
+    options.seed = *o.seed;
   } else {
     std::random_device entropy;
     options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
   }
   options.session_path =
-      session_path.empty() ? palpa::gui::default_session_path() : std::filesystem::path(session_path);
-  if (screenshot.empty() && std::filesystem::exists(options.session_path)) {
+      o.session_path.empty() ? palpa::gui::default_session_path() : std::filesystem::path(o.session_path);
+  status = kBadInput;
+  if (o.screenshot.empty() && std::filesystem::exists(options.session_path)) {
     print_error(options.session_path.string() + ": file: exists (a session is never overwritten)");
-    return kBadInput;
+    return nullptr;
   }
-
-  std::unique_ptr<palpa::trainer::LiveExercise> exercise;
   try {
-    if (screenshot.empty()) options.device = palpa::gui::open_chosen_device(device);
+    if (o.screenshot.empty()) options.device = palpa::gui::open_chosen_device(o.device);
   } catch (const std::exception& e) {  // device::DeviceError, session::SessionError: one line naming the device
     print_error(e.what());
-    return kBadInput;
+    return nullptr;
   }
   try {
-    exercise = std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(case_path), case_path, options);
+    return std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(o.case_path), o.case_path, options);
   } catch (const palpa::io::CaseError& e) {
     std::string line = e.what();
-    if (e.problems().size() > 1) {
-      line += " (and ";
-      line += std::to_string(e.problems().size() - 1);
-      line += " more: palpa-cli validate lists them)";
-    }
+    if (e.problems().size() > 1) line += fmt::format(" (and {} more: palpa-cli validate lists them)", e.problems().size() - 1);
     std::fprintf(stderr, "%s\n", line.c_str());
-    return kBadInput;
   } catch (const std::exception& e) {
     print_error(e.what());
-    return kFailure;
+    status = kFailure;
   }
+  return nullptr;
+}
 
+int run_trainee(int argc, char** argv, const GuiOptions& o, const palpa::gui::TraineeSettings& settings) {
+  int status = kOk;
+  std::unique_ptr<palpa::live::LiveExercise> exercise = trainee_exercise(o, status);
+  if (!exercise) return status;
   init_gui_format();
   QApplication app(argc, argv);
   QApplication::setApplicationName("palpa");
   QApplication::setApplicationVersion(palpa::kVersion);
   try {
-    const QString name = QString::fromStdString(std::filesystem::path(case_path).filename().string());
-    if (!screenshot.empty()) {
+    const QString name = QString::fromStdString(std::filesystem::path(o.case_path).filename().string());
+    if (!o.screenshot.empty()) {
       palpa::ui::TraineeWindow window(std::move(exercise), name, false);
-      return screenshot_of(window, screenshot);
+      return screenshot_of(window, o.screenshot);
     }
     palpa::gui::AppWindows windows(settings);
     auto* window = new palpa::ui::TraineeWindow(std::move(exercise), name);
@@ -284,4 +258,45 @@ int main(int argc, char** argv) {
     print_error(e.what());
     return kFailure;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  GuiOptions o;
+  CLI::App cli{"Palpa: find the hidden tumour by palpating a soft body with the mouse (the wheel sets how deep you "
+               "press), mark it with M, finish for your score card.",
+               "palpa"};
+  add_options(cli, o);
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    print_error(std::string(e.what()) + " (see palpa --help)");
+    return kBadInput;
+  }
+  if (o.bench) return run_bench(argc, argv, o);
+  if (!o.bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0) {
+    print_error("--seconds, --csv and --max-bodies go with --bench (see palpa --help)");
+    return kBadInput;
+  }
+  if (o.trainee.empty()) {
+    const char* user = std::getenv("USER");
+    o.trainee = user && *user ? user : "trainee";
+  }
+  // What every trainee window opened from a File menu uses (a fresh seed and session
+  // file per exercise unless --seed is given).
+  const palpa::gui::TraineeSettings settings{o.trainee, o.seed, {}, o.device};
+  if (o.mode == "review") return run_review(argc, argv, o.session_path, o.screenshot, settings);
+  if (o.mode == "instructor") {
+    if (!o.session_path.empty()) {
+      print_error("--session goes with trainee or review mode; \"Try it\" records in the default sessions folder");
+      return kBadInput;
+    }
+    return run_instructor(argc, argv, cli.count("--case") > 0 ? o.case_path : std::string(), o.screenshot, settings);
+  }
+  return run_trainee(argc, argv, o, settings);
 }

@@ -174,19 +174,19 @@ bool FalconDevice::exchange(unsigned timeout_ms) {
   return true;
 }
 
-void FalconDevice::place_workspace(const engine::Vec3& scene_center, double scale) {
+void FalconDevice::place_workspace(const palpa::Vec3& scene_center, double scale) {
   caps_.workspace_center = scene_center;
   scale_ = scale > 0.0 ? scale : 1.0;
   caps_.workspace_radius = scale_ * falcon::Kinematics::kWorkspaceRadius;
 }
 
 // Device frame: x right, y up, z toward the user. Scene: x right, y away from the user, z up.
-engine::Vec3 FalconDevice::to_scene(const falcon::Vec3& p) const {
-  const falcon::Vec3 d = p - falcon::Kinematics::workspace_center();
-  return caps_.workspace_center + scale_ * engine::Vec3(d.x(), -d.z(), d.y());
+palpa::Vec3 FalconDevice::to_scene(const palpa::Vec3& p) const {
+  const palpa::Vec3 d = p - falcon::Kinematics::workspace_center();
+  return caps_.workspace_center + scale_ * palpa::Vec3(d.x(), -d.z(), d.y());
 }
 
-falcon::Vec3 FalconDevice::force_to_device(const engine::Vec3& f) const { return {f.x(), f.z(), -f.y()}; }
+palpa::Vec3 FalconDevice::force_to_device(const palpa::Vec3& f) const { return {f.x(), f.z(), -f.y()}; }
 
 engine::DeviceStatus FalconDevice::read(double /*t*/, engine::DevicePose& pose) noexcept {
   const auto status = status_.load(std::memory_order_acquire);
@@ -232,20 +232,20 @@ void FalconDevice::publish_torque(const std::array<std::int16_t, 3>& torque) {
   commands_.publish();
 }
 
-engine::DeviceStatus FalconDevice::write_force(const engine::Vec3& force) noexcept {
+engine::DeviceStatus FalconDevice::write_force(const palpa::Vec3& force) noexcept {
   const auto status = status_.load(std::memory_order_acquire);
   if (status != DeviceStatus::Ok) {
     publish_torque({0, 0, 0});  // whatever was asked: a failed device gets no force
     return status;
   }
-  falcon::Vec3 f = force_to_device(force);
+  palpa::Vec3 f = force_to_device(force);
   if (!f.allFinite()) f.setZero();
   const double norm = f.norm();
   if (norm > options_.max_force) f *= options_.max_force / norm;
   const auto torques = kinematics_.torques(device_position_, f);
   std::array<std::int16_t, 3> torque{0, 0, 0};
   if (torques) {
-    falcon::Vec3 units((*torques).unaryExpr([](double t) { return falcon::torque_to_units(t); }));
+    palpa::Vec3 units((*torques).unaryExpr([](double t) { return falcon::torque_to_units(t); }));
     // One motor at its limit scales all three, so the force keeps its direction.
     const double biggest = units.cwiseAbs().maxCoeff();
     if (biggest > falcon::kMaxTorqueUnits) units *= falcon::kMaxTorqueUnits / biggest;

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <fmt/format.h>
+
 #include "palpa/device/device_error.hpp"
 #include "palpa/device/falcon_packet.hpp"
 
@@ -90,98 +92,116 @@ std::vector<std::uint8_t> read_firmware(const std::filesystem::path& path, const
 
 namespace {
 
+// Each step of the boot sequence returns an empty string on success, else why it failed,
+// and throws for what no retry can mend (unplugged, no permission).
+class BootStep {
+ public:
+  BootStep(FtdiSerial& serial, const std::string& device_id, const BootOptions& options)
+      : serial_(serial), device_id_(device_id), options_(options) {}
+
+  // The FTDI chip at 9600 baud 8N1, buffers purged, then DTR high: the boot loader listens.
+  std::string serial_setup() {
+    for (const auto& [request, value] : std::array<std::pair<std::uint8_t, std::uint16_t>, 8>{{
+             {ftdi::kReset, ftdi::kPurgeRx},
+             {ftdi::kReset, ftdi::kPurgeTx},
+             {ftdi::kLatencyTimer, 16},
+             {ftdi::kBaudRate, ftdi::kBaud9600},
+             {ftdi::kLineProperties, ftdi::kLine8N1},
+             {ftdi::kFlowControl, 0},
+             {ftdi::kModemControl, ftdi::kRtsLow},
+             {ftdi::kModemControl, ftdi::kDtrLow},
+         }}) {
+      if (auto why = check(serial_.control(request, value), "serial setup"); !why.empty()) return why;
+    }
+    return check(serial_.control(ftdi::kModemControl, ftdi::kDtrHigh), "DTR");
+  }
+
+  // Hello to the boot loader until it answers 0x0A 0x44 0x2C 0x0D.
+  std::string hello() {
+    static constexpr std::array<std::uint8_t, 3> kHello{0x0A, 0x43, 0x0D};
+    static constexpr std::array<std::uint8_t, 4> kReply{0x0A, 0x44, 0x2C, 0x0D};
+    for (int k = 0; k < options_.check_tries; ++k) {
+      UsbStatus status = serial_.write(kHello.data(), kHello.size(), options_.timeout_ms);
+      fatal(status, "boot loader hello");
+      if (status != UsbStatus::Ok) continue;
+      std::array<std::uint8_t, 8> reply{};
+      std::size_t got = 0;
+      status = serial_.read_exactly(reply.data(), 4, got, options_.timeout_ms);
+      fatal(status, "boot loader hello");
+      if (got == 4 && reply[0] == 0x00) {  // the 5-byte form: a 0x00 first
+        std::size_t more = 0;
+        serial_.read_exactly(reply.data() + 4, 1, more, options_.timeout_ms);
+        got += more;
+      }
+      if (got >= 4 && std::equal(kReply.begin(), kReply.end(), reply.begin() + static_cast<std::ptrdiff_t>(got - 4)))
+        return {};
+    }
+    return "the boot loader did not answer its hello (is the Falcon powered?)";
+  }
+
+  // DTR low and the loader's baud rate; the loader echoes an 'A'.
+  std::string loader_check() {
+    UsbStatus status = serial_.control(ftdi::kModemControl, ftdi::kDtrLow);
+    fatal(status, "DTR");
+    if (status == UsbStatus::Ok) status = serial_.control(ftdi::kBaudRate, ftdi::kBaudLoader);
+    if (auto why = check(status, "loader baud rate"); !why.empty()) return why;
+    const std::uint8_t a = 'A';
+    std::uint8_t echo = 0;
+    std::size_t got = 0;
+    status = serial_.write(&a, 1, options_.timeout_ms);
+    if (status == UsbStatus::Ok) status = serial_.read_exactly(&echo, 1, got, options_.timeout_ms);
+    fatal(status, "loader check");
+    if (status != UsbStatus::Ok || echo != 'A') return "the boot loader did not echo 'A'";
+    return {};
+  }
+
+  // The firmware in blocks, each echoed back and compared.
+  std::string upload(const std::vector<std::uint8_t>& firmware) {
+    std::array<std::uint8_t, kFirmwareBlock> back{};
+    const std::size_t blocks = (firmware.size() + kFirmwareBlock - 1) / kFirmwareBlock;
+    for (std::size_t block = 0; block < blocks; ++block) {
+      const std::size_t offset = block * kFirmwareBlock;
+      const std::size_t size = std::min(kFirmwareBlock, firmware.size() - offset);
+      std::size_t got = 0;
+      UsbStatus status = serial_.write(firmware.data() + offset, size, options_.timeout_ms);
+      if (status == UsbStatus::Ok) status = serial_.read_exactly(back.data(), size, got, options_.timeout_ms);
+      const std::string where = fmt::format("firmware block {} of {}", block + 1, blocks);
+      fatal(status, "firmware upload");
+      if (status != UsbStatus::Ok) return failed(status, where);
+      if (!std::equal(back.begin(), back.begin() + static_cast<std::ptrdiff_t>(size),
+                      firmware.begin() + static_cast<std::ptrdiff_t>(offset)))
+        return where + " echoed wrong bytes";
+    }
+    return check(serial_.enter_firmware_mode(), "firmware mode");
+  }
+
+ private:
+  void fatal(UsbStatus status, const char* step) const {
+    if (status == UsbStatus::NoDevice || status == UsbStatus::Access)
+      throw DeviceError(device_id_, "boot", failed(status, step));
+  }
+  static std::string failed(UsbStatus status, const std::string& step) {
+    return fmt::format("{}: {}", step, to_string(status));
+  }
+  std::string check(UsbStatus status, const char* step) const {
+    fatal(status, step);
+    return status == UsbStatus::Ok ? std::string() : failed(status, step);
+  }
+
+  FtdiSerial& serial_;
+  const std::string& device_id_;
+  const BootOptions& options_;
+};
+
 // One pass of the boot sequence. Returns an empty string on success, else why it failed;
 // throws for what no retry can mend (unplugged, no permission).
 std::string boot_once(FtdiSerial& serial, const std::vector<std::uint8_t>& firmware, const std::string& device_id,
                       const BootOptions& options) {
-  const auto fatal = [&](UsbStatus status, const char* step) {
-    if (status == UsbStatus::NoDevice || status == UsbStatus::Access) {
-      std::string reason = step;
-      reason += ": ";
-      reason += to_string(status);
-      throw DeviceError(device_id, "boot", reason);
-    }
-  };
-  const auto failed = [](UsbStatus status, const char* step) {
-    std::string reason = step;
-    reason += ": ";
-    reason += to_string(status);
-    return reason;
-  };
-  for (const auto& [request, value] : std::array<std::pair<std::uint8_t, std::uint16_t>, 8>{{
-           {ftdi::kReset, ftdi::kPurgeRx},
-           {ftdi::kReset, ftdi::kPurgeTx},
-           {ftdi::kLatencyTimer, 16},
-           {ftdi::kBaudRate, ftdi::kBaud9600},
-           {ftdi::kLineProperties, ftdi::kLine8N1},
-           {ftdi::kFlowControl, 0},
-           {ftdi::kModemControl, ftdi::kRtsLow},
-           {ftdi::kModemControl, ftdi::kDtrLow},
-       }}) {
-    const UsbStatus status = serial.control(request, value);
-    fatal(status, "serial setup");
-    if (status != UsbStatus::Ok) return failed(status, "serial setup");
-  }
-  UsbStatus status = serial.control(ftdi::kModemControl, ftdi::kDtrHigh);
-  fatal(status, "DTR");
-  if (status != UsbStatus::Ok) return failed(status, "DTR");
-
-  // Hello to the boot loader until it answers 0x0A 0x44 0x2C 0x0D.
-  static constexpr std::array<std::uint8_t, 3> kHello{0x0A, 0x43, 0x0D};
-  static constexpr std::array<std::uint8_t, 4> kReply{0x0A, 0x44, 0x2C, 0x0D};
-  bool answered = false;
-  for (int k = 0; k < options.check_tries && !answered; ++k) {
-    status = serial.write(kHello.data(), kHello.size(), options.timeout_ms);
-    fatal(status, "boot loader hello");
-    if (status != UsbStatus::Ok) continue;
-    std::array<std::uint8_t, 8> reply{};
-    std::size_t got = 0;
-    status = serial.read_exactly(reply.data(), 4, got, options.timeout_ms);
-    fatal(status, "boot loader hello");
-    if (got == 4 && reply[0] == 0x00) {  // the 5-byte form: a 0x00 first
-      std::size_t more = 0;
-      serial.read_exactly(reply.data() + 4, 1, more, options.timeout_ms);
-      got += more;
-    }
-    answered = got >= 4 && std::equal(kReply.begin(), kReply.end(), reply.begin() + static_cast<std::ptrdiff_t>(got - 4));
-  }
-  if (!answered) return "the boot loader did not answer its hello (is the Falcon powered?)";
-
-  status = serial.control(ftdi::kModemControl, ftdi::kDtrLow);
-  fatal(status, "DTR");
-  if (status == UsbStatus::Ok) status = serial.control(ftdi::kBaudRate, ftdi::kBaudLoader);
-  fatal(status, "loader baud rate");
-  if (status != UsbStatus::Ok) return failed(status, "loader baud rate");
-  const std::uint8_t a = 'A';
-  std::uint8_t echo = 0;
-  std::size_t got = 0;
-  status = serial.write(&a, 1, options.timeout_ms);
-  if (status == UsbStatus::Ok) status = serial.read_exactly(&echo, 1, got, options.timeout_ms);
-  fatal(status, "loader check");
-  if (status != UsbStatus::Ok || echo != 'A') return "the boot loader did not echo 'A'";
-
-  std::array<std::uint8_t, kFirmwareBlock> back{};
-  const std::size_t blocks = (firmware.size() + kFirmwareBlock - 1) / kFirmwareBlock;
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const std::size_t offset = block * kFirmwareBlock;
-    const std::size_t size = std::min(kFirmwareBlock, firmware.size() - offset);
-    status = serial.write(firmware.data() + offset, size, options.timeout_ms);
-    if (status == UsbStatus::Ok) status = serial.read_exactly(back.data(), size, got, options.timeout_ms);
-    fatal(status, "firmware upload");
-    std::string where = "firmware block ";
-    where += std::to_string(block + 1);
-    where += " of ";
-    where += std::to_string(blocks);
-    if (status != UsbStatus::Ok) return failed(status, where.c_str());
-    if (!std::equal(back.begin(), back.begin() + static_cast<std::ptrdiff_t>(size), firmware.begin() + static_cast<std::ptrdiff_t>(offset))) {
-      where += " echoed wrong bytes";
-      return where;
-    }
-  }
-  status = serial.enter_firmware_mode();
-  fatal(status, "firmware mode");
-  if (status != UsbStatus::Ok) return failed(status, "firmware mode");
-  return {};
+  BootStep step(serial, device_id, options);
+  if (auto why = step.serial_setup(); !why.empty()) return why;
+  if (auto why = step.hello(); !why.empty()) return why;
+  if (auto why = step.loader_check(); !why.empty()) return why;
+  return step.upload(firmware);
 }
 
 }  // namespace

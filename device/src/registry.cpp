@@ -1,7 +1,8 @@
 #include "palpa/device/registry.hpp"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "palpa/device/device_error.hpp"
 #include "palpa/device/device_ids.hpp"
@@ -12,11 +13,7 @@ namespace palpa::device {
 
 namespace {
 
-std::string hex4(std::uint16_t value) {
-  char text[8];
-  std::snprintf(text, sizeof text, "%04x", static_cast<unsigned>(value));
-  return text;
-}
+std::string hex4(std::uint16_t value) { return fmt::format("{:04x}", value); }
 
 // A SpaceMouse shows several HID interfaces on some receivers; the probe wants the
 // multi-axis controller (usage page 0x01, usage 0x08). Backends that cannot tell (0) pass.

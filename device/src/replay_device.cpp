@@ -14,10 +14,10 @@ ReplayDevice::ReplayDevice(const session::Session& session, const std::string& s
   t_.reserve(session.samples.size());
   position_.reserve(session.samples.size());
   buttons_.reserve(session.samples.size());
-  engine::Vec3 last = engine::Vec3::Zero();
+  palpa::Vec3 last = palpa::Vec3::Zero();
   bool seen = false;
   for (const auto& s : session.samples) {
-    const engine::Vec3 p(s.position[0], s.position[1], s.position[2]);
+    const palpa::Vec3 p(s.position[0], s.position[1], s.position[2]);
     // Sessions recorded before the engine kept the last position on a fault have the
     // origin there: hold the last good position instead.
     if (!s.fault || !seen) {
@@ -52,7 +52,7 @@ engine::DeviceStatus ReplayDevice::read(double t, engine::DevicePose& pose) noex
   return engine::DeviceStatus::Ok;
 }
 
-engine::DeviceStatus ReplayDevice::write_force(const engine::Vec3& /*force*/) noexcept {
+engine::DeviceStatus ReplayDevice::write_force(const palpa::Vec3& /*force*/) noexcept {
   return engine::DeviceStatus::Ok;
 }
 

@@ -1,6 +1,8 @@
 #include "palpa/device/spacemouse_report.hpp"
 
-#include <cstdio>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include "palpa/device/device_ids.hpp"
 
@@ -13,11 +15,16 @@ std::int16_t int16_le(const std::uint8_t* p) {
   return static_cast<std::int16_t>(static_cast<std::uint16_t>(p[0] | (p[1] << 8)));
 }
 
+// Into the fixed buffer, cut short and NUL-terminated: parsing a report allocates nothing.
+template <typename... Args>
+void set_message(ReportOutcome& out, fmt::format_string<Args...> format, Args&&... args) {
+  *fmt::format_to_n(out.message.data(), out.message.size() - 1, format, std::forward<Args>(args)...).out = '\0';
+}
+
 ReportOutcome bad(const std::uint8_t id, std::size_t size, std::size_t needed, const char* what) {
   ReportOutcome out;
   out.kind = ReportKind::Bad;
-  std::snprintf(out.message.data(), out.message.size(), "report %u has %zu bytes, %s needs %zu",
-                static_cast<unsigned>(id), size, what, needed);
+  set_message(out, "report {} has {} bytes, {} needs {}", static_cast<unsigned>(id), size, what, needed);
   return out;
 }
 
@@ -38,7 +45,7 @@ ReportOutcome parse_report(ReportLayout layout, const std::uint8_t* report, std:
   ReportOutcome out;
   if (size == 0 || report == nullptr) {
     out.kind = ReportKind::Bad;
-    std::snprintf(out.message.data(), out.message.size(), "empty report");
+    set_message(out, "empty report");
     return out;
   }
   const std::uint8_t id = report[0];

@@ -3,12 +3,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <cstdio>
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -269,9 +269,7 @@ cv::Mat coverage_heatmap(const score::Score& score) {
              viridis(1.0 - static_cast<double>(r) / (bar.height - 1)));
   cv::rectangle(image, bar, kInk, 1);
   put_text(image, "contact time", {kLegendX, 75});
-  char top[32];
-  std::snprintf(top, sizeof top, "%.3g s", static_cast<double>(max_dwell));
-  put_text(image, top, {bar.x + bar.width + 8, bar.y + 6});
+  put_text(image, fmt::format("{:.3g} s", static_cast<double>(max_dwell)), {bar.x + bar.width + 8, bar.y + 6});
   put_text(image, "0 s", {bar.x + bar.width + 8, bar.y + bar.height});
   cv::rectangle(image, {kLegendX, 420, 28, 20}, untouched_colour(), cv::FILLED);
   cv::rectangle(image, {kLegendX, 420, 28, 20}, kInk, 1);
@@ -295,11 +293,9 @@ cv::Mat pressure_map(const score::Score& score) {
     cv::rectangle(image, box, kInk, 1);
     put_text(image, names[level], {box.x + 36, box.y + 16});
   }
-  char cuts[96];
-  std::snprintf(cuts, sizeof cuts, "depth/thickness: light < %.2g,", score.thresholds.light_max);
-  put_text(image, ascii(cuts), {kLegendX, 250}, 0.4);
-  std::snprintf(cuts, sizeof cuts, "deep >= %.2g", score.thresholds.deep_min);
-  put_text(image, ascii(cuts), {kLegendX, 268}, 0.4);
+  put_text(image, ascii(fmt::format("depth/thickness: light < {:.2g},", score.thresholds.light_max)), {kLegendX, 250},
+           0.4);
+  put_text(image, ascii(fmt::format("deep >= {:.2g}", score.thresholds.deep_min)), {kLegendX, 268}, 0.4);
   return image;
 }
 

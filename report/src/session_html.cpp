@@ -64,8 +64,11 @@ SessionImages render_images(const session::Session& session, const score::Score&
   return {png_bytes(coverage_heatmap(score)), png_bytes(pressure_map(score)), png_bytes(force_plot(session, score))};
 }
 
-std::string session_html(const SessionHeader& h, const score::Score& s, const SessionImages& images) {
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Palpa session ";
+namespace {
+
+// The page head, what was palpated, and the verdict with its gates.
+void add_head_and_verdict(std::string& html, const SessionHeader& h, const score::Score& s) {
+  html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Palpa session ";
   html += esc(h.trainee) + " - " + esc(case_name(h)) + "</title>\n<style>\n" + report_css() + "</style>\n</head>\n<body>\n";
   html += "<h1>Palpation session: " + esc(h.trainee) + "</h1>\n";
   html += "<p class=\"meta\">Case <b>" + esc(case_name(h)) + "</b>";
@@ -81,6 +84,9 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
   }
   html += "</ul></div>\n";
 
+}
+
+void add_metrics(std::string& html, const score::Score& s) {
   html += "<h2>Metrics</h2>\n<table>\n";
   std::size_t found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
@@ -98,7 +104,7 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
                                                           fixed(s.pressure.deep_s, 1) + " s");
   row(html, "Peak force", fixed(s.peak_force_n, 2) + " N" + (s.safe ? "" : " (over the safety limit)"));
   row(html, "Palpate / search force ratio", s.palpate_search_ratio > 0.0 ? fixed(s.palpate_search_ratio, 2) : "-");
-  row(html, "Search pattern", s.pattern.kind + " (strips " + percent(s.pattern.strip_fraction) + ", spacing " +
+  row(html, "Search pattern", score::to_string(s.pattern.kind) + " (strips " + percent(s.pattern.strip_fraction) + ", spacing " +
                                   fixed(s.pattern.strip_spacing_mm, 1) + " mm, revisits " +
                                   percent(s.pattern.revisit_fraction) + ", efficiency " +
                                   percent(s.pattern.efficiency) + ")");
@@ -112,10 +118,9 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
     html += "</table>\n";
   }
 
-  html += "<h2>Coverage</h2>\n" + png_img(images.coverage, "coverage heatmap") + "\n";
-  html += "<h2>Pressure</h2>\n" + png_img(images.pressure, "pressure map") + "\n";
-  html += "<h2>Force over time</h2>\n" + png_img(images.force, "force and indentation level over time") + "\n";
+}
 
+void add_tumours(std::string& html, const score::Score& s) {
   html += "<h2>Tumours</h2>\n<table>\n<tr><th>#</th><th>body</th><th>centre (mm)</th><th>diameter</th>"
           "<th>found</th><th>by mark</th><th>error</th></tr>\n";
   for (std::size_t i = 0; i < s.tumours.size(); ++i) {
@@ -128,6 +133,10 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
   }
   html += "</table>\n";
 
+}
+
+// The marks, then the notes.
+void add_marks_and_notes(std::string& html, const score::Score& s) {
   html += "<h2>Marks</h2>\n";
   if (s.marks.empty()) {
     html += "<p>No marks.</p>\n";
@@ -150,6 +159,9 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
     html += "</ul>\n";
   }
 
+}
+
+void add_thresholds(std::string& html, const score::Score& s) {
   const auto& th = s.thresholds;
   html += "<h2>Thresholds used</h2>\n<table>\n";
   row(html, "A mark hits a tumour within", "its radius + " + mm(th.hit_margin));
@@ -171,7 +183,23 @@ std::string session_html(const SessionHeader& h, const score::Score& s, const Se
               fixed(part.v1, 2);
   }
   row(html, "Exam region", region.empty() ? "the whole top of every body" : region);
-  html += "</table>\n</body>\n</html>\n";
+  html += "</table>\n";
+}
+
+}  // namespace
+
+std::string session_html(const SessionHeader& h, const score::Score& s, const SessionImages& images) {
+  std::string html;
+  add_head_and_verdict(html, h, s);
+  add_metrics(html, s);
+  html += "<h2>Coverage</h2>\n" + png_img(images.coverage, "coverage heatmap") + "\n";
+  html += "<h2>Pressure</h2>\n" + png_img(images.pressure, "pressure map") + "\n";
+  html += "<h2>Force over time</h2>\n" + png_img(images.force, "force and indentation level over time") + "\n";
+
+  add_tumours(html, s);
+  add_marks_and_notes(html, s);
+  add_thresholds(html, s);
+  html += "</body>\n</html>\n";
   return html;
 }
 

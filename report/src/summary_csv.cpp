@@ -62,7 +62,7 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   number(s.peak_force_n);
   flag(s.safe);
   number(s.palpate_search_ratio);
-  text(s.pattern.kind);
+  text(score::to_string(s.pattern.kind));
   number(s.pressure.light_s);
   number(s.pressure.medium_s);
   number(s.pressure.deep_s);

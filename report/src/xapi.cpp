@@ -38,7 +38,7 @@ nlohmann::json xapi_statement(const SessionHeader& h, const score::Score& s) {
                      {x + "peak_force_n", s.peak_force_n},
                      {x + "safe", s.safe},
                      {x + "palpate_search_ratio", s.palpate_search_ratio},
-                     {x + "pattern", s.pattern.kind},
+                     {x + "pattern", score::to_string(s.pattern.kind)},
                      {x + "light_s", s.pressure.light_s},
                      {x + "medium_s", s.pressure.medium_s},
                      {x + "deep_s", s.pressure.deep_s},

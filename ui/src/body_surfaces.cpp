@@ -8,7 +8,7 @@
 
 namespace palpa::ui {
 
-BodySurfaces::BodySurfaces(const trainer::DisplayMeshes& meshes, vtkRenderer* renderer) {
+BodySurfaces::BodySurfaces(const live::DisplayMeshes& meshes, vtkRenderer* renderer) {
   surfaces_.resize(2 * meshes.size());
   for (std::size_t k = 0; k < surfaces_.size(); ++k) {
     auto& s = surfaces_[k];
@@ -70,7 +70,7 @@ void BodySurfaces::copy(const render::Mesh& mesh, Surface& s) {
   s.data->Modified();
 }
 
-std::size_t BodySurfaces::sync(const trainer::DisplayMeshes& meshes, bool all) {
+std::size_t BodySurfaces::sync(const live::DisplayMeshes& meshes, bool all) {
   std::size_t copied = 0;
   for (std::size_t b = 0; b < meshes.size(); ++b) {
     if (!all && !meshes.changed(b)) continue;

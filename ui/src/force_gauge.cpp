@@ -14,15 +14,15 @@ ForceGauge::ForceGauge(double light_max, double deep_min, QWidget* parent)
                 "as the score counts them"));
 }
 
-void ForceGauge::set_contact(const trainer::ContactInfo& contact) {
+void ForceGauge::set_contact(const live::ContactInfo& contact) {
   contact_ = contact;
   update();
 }
 
 QStringList ForceGauge::lines() const {
   const QString force = QString::number(contact_.force, 'f', 1) + " N";
-  if (contact_.level == trainer::PressureLevel::None) return {force + "  " + tr("no contact"), QString()};
-  return {force + "  " + trainer::to_string(contact_.level),
+  if (contact_.level == live::PressureLevel::None) return {force + "  " + tr("no contact"), QString()};
+  return {force + "  " + live::to_string(contact_.level),
           tr("depth %1 mm (%2 % of %3 mm)")
               .arg(contact_.depth * 1e3, 0, 'f', 1)
               .arg(contact_.fraction * 100.0, 0, 'f', 0)
@@ -70,7 +70,7 @@ void ForceGauge::paintEvent(QPaintEvent*) {
     if (room > 0) p.drawText(band, Qt::AlignCenter, fontMetrics().elidedText(names[k], Qt::ElideRight, room));
   }
   // The press so far, as a dark fill, and a needle.
-  if (contact_.level != trainer::PressureLevel::None) {
+  if (contact_.level != live::PressureLevel::None) {
     const double x = x_of(contact_.fraction);
     p.setPen(Qt::NoPen);
     p.setBrush(QColor(0, 0, 0, 70));

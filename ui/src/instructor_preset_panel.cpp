@@ -48,12 +48,12 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   stiffness_ = spin(this, tr(" N/m"), 0);
   stiffness_label_ = new QLabel(tr("Stiffness"), this);
   form->addRow(stiffness_label_, stiffness_);
-  // In kPa: how fast the tissue stiffens when pressed (fibroglandular tissue 3.59, fat 0).
+  // In kPa: how fast the tissue stiffens when pressed (fibroglandular 3.59, fat 0).
   stiffening_ = spin(this, QString(), 2);
   stiffening_->setRange(0.0, 20.0);
   stiffening_->setSingleStep(0.5);
   stiffening_->setToolTip(tr("How fast the tissue stiffens when pressed: its modulus grows as exp(stiffening x "
-                             "strain). Fibroglandular tissue 3.59, fat 0 (Krouskop et al. 1998); 0: none"));
+                             "strain). Fibroglandular 3.59, fat 0 (Krouskop et al. 1998); 0: none"));
   stiffening_label_ = new QLabel(tr("Stiffening"), this);
   form->addRow(stiffening_label_, stiffening_);
   note_ = new QLabel(this);

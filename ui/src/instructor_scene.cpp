@@ -223,8 +223,8 @@ void InstructorScene::set_stiffness_overlay(bool on) {
   legend_->SetVisibility(on && !surfaces_.empty());
 }
 
-std::optional<render::SurfacePick> InstructorScene::pick(const render::Vec3& origin,
-                                                          const render::Vec3& direction) const {
+std::optional<render::SurfacePick> InstructorScene::pick(const palpa::Vec3& origin,
+                                                          const palpa::Vec3& direction) const {
   if (!picker_) return std::nullopt;
   return picker_->pick(origin, direction);
 }

@@ -54,6 +54,17 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   auto* help = new QLabel(tr("Click the body to place a tumour (Shift+click moves the selected one)."), this);
   help->setWordWrap(true);
   layout->addWidget(help);
+  build_table(layout);
+  build_spec_form(layout);
+  build_placement_rule(layout);
+  remove_ = new QPushButton(tr("Remove tumour"), this);
+  layout->addWidget(remove_);
+  connect_controls();
+  remove_->setEnabled(false);
+}
+
+// The placed tumours, one row each.
+void InstructorTumourPanel::build_table(QVBoxLayout* layout) {
   table_ = new QTableWidget(0, 4, this);
   table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("Material"), tr("Random")});
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -66,6 +77,11 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   table_->setMinimumHeight(110);
   layout->addWidget(table_, 1);
 
+}
+
+// The selected tumour's depth, radius and tissue (a material from the literature or a
+// custom stiffness).
+void InstructorTumourPanel::build_spec_form(QVBoxLayout* layout) {
   auto* form = new QFormLayout;
   // Two decimals (10 um) and a low radius floor: a loaded tumour shows as it is written.
   depth_ = spin(this, 0.0, 200.0, 1.0, 2, tr(" mm"));
@@ -94,7 +110,7 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   tissue_label_ = new QLabel(tr("Tissue"), this);
   stiffening_ = spin(this, 0.0, 20.0, 0.5, 2, QString());
   stiffening_->setToolTip(tr("How fast the tumour stiffens when pressed: its modulus grows as exp(stiffening x "
-                             "strain). Carcinoma about 11, glandular tissue 3.6, fat 0; 0: none"));
+                             "strain). Carcinoma about 11, glandular 3.6, fat 0; 0: none"));
   stiffening_label_ = new QLabel(tr("Stiffening"), this);
   form->addRow(tr("Depth"), depth_);
   form->addRow(tr("Radius"), radius_);
@@ -104,6 +120,10 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   layout->addLayout(form);
   show_material_controls(false);
 
+}
+
+// Randomized placement: the ranges along x, along y and in depth a placed centre may take.
+void InstructorTumourPanel::build_placement_rule(QVBoxLayout* layout) {
   randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
   layout->addWidget(randomize_);
   auto* rules = new QGridLayout;
@@ -126,9 +146,9 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
     }
   }
   layout->addLayout(rules);
-  remove_ = new QPushButton(tr("Remove tumour"), this);
-  layout->addWidget(remove_);
+}
 
+void InstructorTumourPanel::connect_controls() {
   connect(table_, &QTableWidget::itemSelectionChanged, this, [this] {
     if (updating_) return;
     show_selected();
@@ -152,7 +172,6 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
   connect(remove_, &QPushButton::clicked, this, [this] {
     if (const auto k = selected()) emit remove_requested(*k);
   });
-  remove_->setEnabled(false);
 }
 
 void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
@@ -283,9 +302,9 @@ author::TumourSpec InstructorTumourPanel::spec() const {
   return {depth_->value() * 1e-3, radius_->value() * 1e-3, stiffness_->value(), 0.0};
 }
 
-std::optional<exercise::Placement> InstructorTumourPanel::placement() const {
+std::optional<scripted::Placement> InstructorTumourPanel::placement() const {
   if (!randomize_->isChecked()) return std::nullopt;
-  return exercise::Placement{{rule_[0]->value(), rule_[1]->value()},
+  return scripted::Placement{{rule_[0]->value(), rule_[1]->value()},
                              {rule_[2]->value(), rule_[3]->value()},
                              {rule_[4]->value(), rule_[5]->value()}};
 }

@@ -98,7 +98,7 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
   connect(tumour_panel_, &InstructorTumourPanel::spec_changed, this,
           [this](std::size_t k, const author::TumourSpec& s) { edit([this, k, s] { draft_.edit_tumour(k, s); }); });
   connect(tumour_panel_, &InstructorTumourPanel::placement_changed, this,
-          [this](std::size_t k, const std::optional<exercise::Placement>& rule) {
+          [this](std::size_t k, const std::optional<scripted::Placement>& rule) {
             edit([this, k, rule] { draft_.set_placement(k, rule); });
           });
   connect(tumour_panel_, &InstructorTumourPanel::remove_requested, this, [this](std::size_t k) {
@@ -331,7 +331,7 @@ void InstructorWindow::render() {
   render_window_->Render();
 }
 
-QPoint InstructorWindow::to_view(const render::Vec3& point) const {
+QPoint InstructorWindow::to_view(const palpa::Vec3& point) const {
   return view_->to_view(*renderer_, point);
 }
 

@@ -8,7 +8,7 @@
 #include <QFileInfo>
 #include <QMessageBox>
 
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_stiffness_image.hpp"
 #include "palpa/ui/instructor_window.hpp"
@@ -106,7 +106,7 @@ TraineeWindow* InstructorWindow::try_it() {
     set_message(tr("Fix the problems listed below before trying the case."));
     return nullptr;
   }
-  trainer::LiveOptions options;
+  live::LiveOptions options;
   const char* user = std::getenv("USER");
   options.trainee = user && *user ? user : "instructor";
   options.mode = "instructor-try";
@@ -130,7 +130,7 @@ TraineeWindow* InstructorWindow::try_it() {
   }
   try {
     std::filesystem::create_directories(dir);
-    auto exercise = std::make_unique<trainer::LiveExercise>(file, draft_.source(), options);
+    auto exercise = std::make_unique<live::LiveExercise>(file, draft_.source(), options);
     const QString case_name = draft_.path().empty() ? tr("untitled")
                                                     : QString::fromStdString(draft_.path().filename().string());
     auto* window = new TraineeWindow(std::move(exercise), case_name, true);

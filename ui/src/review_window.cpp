@@ -73,7 +73,7 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
   t_ = span_.start;
   const auto placed = io::parse_case(session_.info.case_document.dump(), file_.string());
   scene_ = std::make_unique<scene::Scene>(scene::Scene::build(placed, file_.string()));
-  meshes_ = std::make_unique<trainer::DisplayMeshes>(*scene_);
+  meshes_ = std::make_unique<live::DisplayMeshes>(*scene_);
 
   setWindowTitle(tr("Palpa: review (%1, trainee %2)")
                      .arg(QString::fromStdString(file_.filename().string()), QString::fromStdString(session_.info.trainee)));
@@ -193,7 +193,7 @@ void ReviewWindow::fill_metrics() {
   rows.emplace_back(tr("Deep coverage"), percent(score_.deep_coverage));
   rows.emplace_back(tr("Duration (s)"), QString::number(score_.duration_s, 'f', 1));
   rows.emplace_back(tr("Peak force (N)"), QString::number(score_.peak_force_n, 'f', 1));
-  rows.emplace_back(tr("Search pattern"), QString::fromStdString(score_.pattern.kind));
+  rows.emplace_back(tr("Search pattern"), QString::fromStdString(score::to_string(score_.pattern.kind)));
   for (const auto& g : score_.gates) {
     rows.emplace_back(tr("Gate: %1").arg(QString::fromStdString(g.name)),
                       (g.passed ? tr("pass") : tr("FAIL")) + QString(" (%1 / %2)").arg(g.value, 0, 'g', 3).arg(g.threshold, 0, 'g', 3));

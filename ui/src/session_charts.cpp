@@ -196,8 +196,14 @@ void SessionCharts::build(const session::Session& session, const score::Score& s
   add_row(limit_, {0.0, score.thresholds.max_force});
   add_row(limit_, {duration, score.thresholds.max_force});
 
-  // Depth on the left axis (corner 0), the force and the lines in newtons on the right
-  // (corner 1): vtkChartXY draws corner by corner, so the force line stays on top.
+  add_plots(show_limit, duration, deepest);
+  set_cursor(span_.start);
+}
+
+// The lines over the tables and the axes: depth on the left axis (corner 0), the force and
+// the lines in newtons on the right (corner 1).
+void SessionCharts::add_plots(bool show_limit, double duration, double deepest_mm) {
+  // vtkChartXY draws corner by corner, so the force line stays on top.
   for (int l = 0; l < 4; ++l) {
     auto* level = vtkPlotLine::SafeDownCast(add_line(chart_, level_segments_[l], kLevelName[l], kLevel[l], 1.0F));
     level->PolyLineOff();
@@ -213,10 +219,9 @@ void SessionCharts::build(const session::Session& session, const score::Score& s
   add_line(chart_, cursor_, "cursor", kCursor, 2.0F, 1);
 
   fix_axis(chart_->GetAxis(vtkAxis::BOTTOM), 0.0, duration, "time (s)");
-  fix_axis(chart_->GetAxis(vtkAxis::LEFT), 0.0, std::max(1.0, deepest * 1.08), "depth (mm)");
+  fix_axis(chart_->GetAxis(vtkAxis::LEFT), 0.0, std::max(1.0, deepest_mm * 1.08), "depth (mm)");
   fix_axis(chart_->GetAxis(vtkAxis::RIGHT), 0.0, force_top_, "|F| (N)");
   chart_->SetShowLegend(false);  // the Qt legend under the view names the colours
-  set_cursor(span_.start);
 }
 
 vtkChartXY* SessionCharts::chart() const { return chart_; }

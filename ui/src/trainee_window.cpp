@@ -44,7 +44,7 @@ constexpr double kMinForceTarget = 1.0;     // N: force mode's range (a light to
 constexpr double kMaxForceTarget = 15.0;    //    clinical press, below the 20 N safety gate)
 constexpr double kDefaultForceTarget = 6.0; // N
 
-vtkSmartPointer<vtkActor> sphere_actor(const trainer::Vec3& centre, double radius, double r, double g, double b) {
+vtkSmartPointer<vtkActor> sphere_actor(const palpa::Vec3& centre, double radius, double r, double g, double b) {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetRadius(radius);
   sphere->SetThetaResolution(32);
@@ -59,7 +59,7 @@ vtkSmartPointer<vtkActor> sphere_actor(const trainer::Vec3& centre, double radiu
   return actor;
 }
 
-vtkSmartPointer<vtkActor> line_actor(const trainer::Vec3& a, const trainer::Vec3& b, double r, double g, double bl) {
+vtkSmartPointer<vtkActor> line_actor(const palpa::Vec3& a, const palpa::Vec3& b, double r, double g, double bl) {
   vtkNew<vtkLineSource> line;
   line->SetPoint1(a.x(), a.y(), a.z());
   line->SetPoint2(b.x(), b.y(), b.z());
@@ -74,11 +74,11 @@ vtkSmartPointer<vtkActor> line_actor(const trainer::Vec3& a, const trainer::Vec3
 
 }  // namespace
 
-TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start,
+TraineeWindow::TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const QString& case_name, bool start,
                              QWidget* parent)
     : QMainWindow(parent),
       exercise_(std::move(exercise)),
-      dial_(exercise_->thresholds(), trainer::PressureDial::middle_of(trainer::PressureLevel::Medium)) {
+      dial_(exercise_->thresholds(), live::PressureDial::middle_of(live::PressureLevel::Medium)) {
   setWindowTitle(tr("Palpa: trainee exercise (%1)").arg(case_name));
   resize(1200, 760);
 
@@ -89,56 +89,11 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
   view_->input()->installEventFilter(this);
   layout->addWidget(view_, 1);
 
-  auto* side = new QVBoxLayout;
-  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body: the finger slides "
-                             "over the skin, pressing at the pressure you choose. <b>Wheel</b> or <b>Up/Down</b>: "
-                             "lighter or deeper (light, medium, deep). Feel where the tissue pushes back harder "
-                             "at the same pressure, then press <b>M</b> to mark the finger's spot.<br>"
-                             "Left drag turns the view, Ctrl+wheel zooms."),
-                          central);
-  help->setWordWrap(true);
-  side->addWidget(help);
-  device_banner_ = new QLabel(central);
-  device_banner_->setWordWrap(true);
-  device_banner_->setStyleSheet("background: #fbe3b0; color: #5a3b00; padding: 6px; border: 1px solid #d9a441");
-  device_banner_->hide();
-  side->addWidget(device_banner_);
-  const auto& th = exercise_->thresholds();
-  gauge_ = new ForceGauge(th.light_max, th.deep_min, central);
-  side->addWidget(gauge_);
-  pressure_label_ = new QLabel(central);
-  pressure_label_->setWordWrap(true);
-  side->addWidget(pressure_label_);
-  force_mode_ = new QCheckBox(tr("Press to a force instead (F)"), central);
-  force_mode_->setToolTip(tr("The finger sinks until it feels the chosen force (1-15 N): over a stiff lump it "
-                             "sinks less. The wheel then sets the force."));
-  side->addWidget(force_mode_);
-  connect(force_mode_, &QCheckBox::toggled, this,
-          [this](bool on) { set_force_mode(on ? (force_target_ > 0.0 ? force_target_ : kDefaultForceTarget) : 0.0); });
-  auto* marks_box = new QGroupBox(tr("Marks"), central);
-  auto* marks_layout = new QVBoxLayout(marks_box);
-  marks_list_ = new QListWidget(marks_box);
-  marks_layout->addWidget(marks_list_);
-  auto* mark_button = new QPushButton(tr("Mark here (M)"), marks_box);
-  remove_button_ = new QPushButton(tr("Remove"), marks_box);
-  auto* mark_buttons = new QHBoxLayout;
-  mark_buttons->addWidget(mark_button);
-  mark_buttons->addWidget(remove_button_);
-  marks_layout->addLayout(mark_buttons);
-  side->addWidget(marks_box, 1);
-  finish_button_ = new QPushButton(tr("Finish and score"), central);
-  side->addWidget(finish_button_);
-  auto* side_widget = new QWidget(central);
-  side_widget->setLayout(side);
-  side_widget->setFixedWidth(300);
+  QPushButton* mark_button = nullptr;
+  QWidget* side_widget = build_side_panel(central, mark_button);
   layout->addWidget(side_widget);
   setCentralWidget(central);
-
-  status_loop_ = new QLabel(this);
-  status_fps_ = new QLabel(this);
-  status_fps_->setToolTip(tr("Frames drawn in the last second: a view that does not change is redrawn only four times a second"));
-  statusBar()->addWidget(status_loop_, 1);
-  statusBar()->addPermanentWidget(status_fps_);
+  build_status_bar();
 
   connect(mark_button, &QPushButton::clicked, this, &TraineeWindow::place_mark);
   connect(remove_button_, &QPushButton::clicked, this, &TraineeWindow::remove_selected_mark);
@@ -170,6 +125,63 @@ TraineeWindow::TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, co
 
 TraineeWindow::~TraineeWindow() = default;
 
+// The panel beside the view: what to do, the device banner, the force gauge and pressure,
+// the force mode, the marks and the finish button.
+QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_button) {
+  auto* side = new QVBoxLayout;
+  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body: the finger slides "
+                             "over the skin, pressing at the pressure you choose. <b>Wheel</b> or <b>Up/Down</b>: "
+                             "lighter or deeper (light, medium, deep). Feel where the tissue pushes back harder "
+                             "at the same pressure, then press <b>M</b> to mark the finger's spot.<br>"
+                             "Left drag turns the view, Ctrl+wheel zooms."),
+                          central);
+  help->setWordWrap(true);
+  side->addWidget(help);
+  device_banner_ = new QLabel(central);
+  device_banner_->setWordWrap(true);
+  device_banner_->setStyleSheet("background: #fbe3b0; color: #5a3b00; padding: 6px; border: 1px solid #d9a441");
+  device_banner_->hide();
+  side->addWidget(device_banner_);
+  const auto& th = exercise_->thresholds();
+  gauge_ = new ForceGauge(th.light_max, th.deep_min, central);
+  side->addWidget(gauge_);
+  pressure_label_ = new QLabel(central);
+  pressure_label_->setWordWrap(true);
+  side->addWidget(pressure_label_);
+  force_mode_ = new QCheckBox(tr("Press to a force instead (F)"), central);
+  force_mode_->setToolTip(tr("The finger sinks until it feels the chosen force (1-15 N): over a stiff lump it "
+                             "sinks less. The wheel then sets the force."));
+  side->addWidget(force_mode_);
+  connect(force_mode_, &QCheckBox::toggled, this,
+          [this](bool on) { set_force_mode(on ? (force_target_ > 0.0 ? force_target_ : kDefaultForceTarget) : 0.0); });
+  auto* marks_box = new QGroupBox(tr("Marks"), central);
+  auto* marks_layout = new QVBoxLayout(marks_box);
+  marks_list_ = new QListWidget(marks_box);
+  marks_layout->addWidget(marks_list_);
+  mark_button = new QPushButton(tr("Mark here (M)"), marks_box);
+  remove_button_ = new QPushButton(tr("Remove"), marks_box);
+  auto* mark_buttons = new QHBoxLayout;
+  mark_buttons->addWidget(mark_button);
+  mark_buttons->addWidget(remove_button_);
+  marks_layout->addLayout(mark_buttons);
+  side->addWidget(marks_box, 1);
+  finish_button_ = new QPushButton(tr("Finish and score"), central);
+  side->addWidget(finish_button_);
+  auto* side_widget = new QWidget(central);
+  side_widget->setLayout(side);
+  side_widget->setFixedWidth(300);
+  return side_widget;
+}
+
+void TraineeWindow::build_status_bar() {
+  status_loop_ = new QLabel(this);
+  status_fps_ = new QLabel(this);
+  status_fps_->setToolTip(tr("Frames drawn in the last second: a view that does not change is redrawn only four times a second"));
+  statusBar()->addWidget(status_loop_, 1);
+  statusBar()->addPermanentWidget(status_fps_);
+
+}
+
 void TraineeWindow::build_scene() {
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
   renderer_ = add_body_renderer(*view_, render_window_);
@@ -179,7 +191,7 @@ void TraineeWindow::build_scene() {
   // can palpate only the skin it can point at (the far slope of the breast is 51 degrees steep).
   frame_from_front(*renderer_, scene_bounds(exercise_->scene()), 1.5);  // the bodies, not the probe
 
-  probe_ = sphere_actor(trainer::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
+  probe_ = sphere_actor(palpa::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
   // Opaque: one translucent actor makes VTK add its order-independent translucency passes
   // (extra full-window buffers and a composite), which with software OpenGL cost ~9 ms a
   // frame (palpa --bench, BENCHMARKS.md).
@@ -187,7 +199,7 @@ void TraineeWindow::build_scene() {
   renderer_->AddActor(probe_);
 }
 
-QPoint TraineeWindow::to_view(const trainer::Vec3& point) const {
+QPoint TraineeWindow::to_view(const palpa::Vec3& point) const {
   return view_->to_view(*renderer_, point);
 }
 
@@ -220,9 +232,9 @@ QString TraineeWindow::pressure_text() const {
     return tr("Pressure: to %1 N (force mode)").arg(force_target_, 0, 'f', 0);
   }
   return tr("Pressure: %1, step %2 of %3")
-      .arg(trainer::to_string(dial_.level()))
+      .arg(live::to_string(dial_.level()))
       .arg(dial_.step_in_level())
-      .arg(trainer::PressureDial::kStepsPerLevel);
+      .arg(live::PressureDial::kStepsPerLevel);
 }
 
 void TraineeWindow::apply_pressure() {
@@ -239,7 +251,7 @@ void TraineeWindow::place_mark() {
   if (!exercise_->started() || exercise_->finished()) return;
   const auto mark = exercise_->place_mark();
   // Drawn on the surface where the finger was, so it stays visible when the tissue springs back.
-  trainer::Vec3 at = mark.position;
+  palpa::Vec3 at = mark.position;
   if (picked_ && picked_->distance >= 0.0) at = picked_->point;
   auto actor = sphere_actor(at, 0.0025, 0.85, 0.10, 0.15);
   renderer_->AddActor(actor);
@@ -285,22 +297,22 @@ void TraineeWindow::reveal(const score::Score& score) {
   request_render();
   surfaces_->set_opacity(0.35);
   for (const auto& t : score.tumours) {
-    const trainer::Vec3 c(t.center[0], t.center[1], t.center[2]);
+    const palpa::Vec3 c(t.center[0], t.center[1], t.center[2]);
     renderer_->AddActor(t.found ? sphere_actor(c, t.radius, 0.20, 0.65, 0.25) : sphere_actor(c, t.radius, 0.75, 0.15, 0.15));
   }
   for (const auto& m : score.marks) {
-    const trainer::Vec3 p(m.position[0], m.position[1], m.position[2]);
+    const palpa::Vec3 p(m.position[0], m.position[1], m.position[2]);
     if (m.tumour >= 0) {
       const auto& t = score.tumours[static_cast<std::size_t>(m.tumour)];
-      renderer_->AddActor(line_actor(p, trainer::Vec3(t.center[0], t.center[1], t.center[2]), 0.2, 0.8, 0.3));
+      renderer_->AddActor(line_actor(p, palpa::Vec3(t.center[0], t.center[1], t.center[2]), 0.2, 0.8, 0.3));
     } else if (!score.tumours.empty()) {
       // A false mark: a red line to the tumour nearest to it.
       const auto nearest = std::min_element(score.tumours.begin(), score.tumours.end(), [&](const auto& a, const auto& b) {
-        return (trainer::Vec3(a.center[0], a.center[1], a.center[2]) - p).norm() <
-               (trainer::Vec3(b.center[0], b.center[1], b.center[2]) - p).norm();
+        return (palpa::Vec3(a.center[0], a.center[1], a.center[2]) - p).norm() <
+               (palpa::Vec3(b.center[0], b.center[1], b.center[2]) - p).norm();
       });
       renderer_->AddActor(
-          line_actor(p, trainer::Vec3(nearest->center[0], nearest->center[1], nearest->center[2]), 0.9, 0.2, 0.2));
+          line_actor(p, palpa::Vec3(nearest->center[0], nearest->center[1], nearest->center[2]), 0.9, 0.2, 0.2));
     }
   }
   probe_->VisibilityOff();
@@ -318,7 +330,7 @@ std::size_t TraineeWindow::cull_bodies() {
     // control points; a press moves the drawn contours inwards, and the oscillators
     // overshoot by a few per cent of the press: a tenth of the diagonal is a safe margin.
     const auto& box = scene.body(b).bounds;
-    const trainer::Vec3 pad = trainer::Vec3::Constant(0.1 * (box.hi - box.lo).norm());
+    const palpa::Vec3 pad = palpa::Vec3::Constant(0.1 * (box.hi - box.lo).norm());
     const bool visible = frustum.may_see(box.lo - pad, box.hi + pad);
     if (visible != exercise_->meshes().visible(b)) {
       exercise_->set_body_visible(b, visible);
@@ -362,8 +374,8 @@ void TraineeWindow::frame() {
       const auto& s = exercise_->snapshot();
     if (s.tick > 0) {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
-      const trainer::Vec3 n = picked_ ? picked_->normal : trainer::Vec3::UnitZ();
-      const trainer::Vec3 c = trainer::Vec3(s.probe[0], s.probe[1], s.probe[2]) + kFingertipRadius * n;
+      const palpa::Vec3 n = picked_ ? picked_->normal : palpa::Vec3::UnitZ();
+      const palpa::Vec3 c = palpa::Vec3(s.probe[0], s.probe[1], s.probe[2]) + kFingertipRadius * n;
       if (!probe_->GetVisibility() || (c - drawn_probe_).norm() > kProbeMoveToDraw) request_render();
       probe_->SetPosition(c.x(), c.y(), c.z());
       probe_->VisibilityOn();

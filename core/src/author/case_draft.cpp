@@ -120,9 +120,9 @@ io::CaseFile CaseDraft::valid_case() const {
   io::CaseFile file = io::parse_case(doc_.dump(), source());
   (void)scene::Scene::build(file, source());  // fits the bodies, tumours inside them
   bool rules = false;
-  for (std::size_t k = 0; k < file.tumours.size(); ++k) rules = rules || exercise::placement_of(file, k).has_value();
+  for (std::size_t k = 0; k < file.tumours.size(); ++k) rules = rules || scripted::placement_of(file, k).has_value();
   // A rule that can never be drawn would fail the first seeded exercise: try one seed now.
-  if (rules) (void)exercise::place_tumours(file, 1, source());
+  if (rules) (void)scripted::place_tumours(file, 1, source());
   return file;
 }
 
@@ -307,7 +307,7 @@ void CaseDraft::remove_tumour(std::size_t k) {
   doc_["tumors"].erase(k);
 }
 
-void CaseDraft::set_placement(std::size_t k, const std::optional<exercise::Placement>& rule) {
+void CaseDraft::set_placement(std::size_t k, const std::optional<scripted::Placement>& rule) {
   (void)tumour_json(k);
   begin_edit();
   json& t = tumour_json(k);
@@ -468,11 +468,11 @@ std::optional<SurfacePoint> CaseDraft::anchor(std::size_t k) const {
   try {
     const auto scene = scene::Scene::build(bodies_only, source());
     const render::TopContourPicker picker(scene);
-    const render::Vec3 centre(t->center[0], t->center[1], t->center[2]);
-    const auto hit = picker.pick(centre, render::Vec3::UnitZ());
+    const palpa::Vec3 centre(t->center[0], t->center[1], t->center[2]);
+    const auto hit = picker.pick(centre, palpa::Vec3::UnitZ());
     if (!hit || hit->distance <= 0.0) return std::nullopt;
     // The normal from the centre to the hit, so that depth along it gives the centre back.
-    const render::Vec3 n = (hit->point - centre).normalized();
+    const palpa::Vec3 n = (hit->point - centre).normalized();
     return SurfacePoint{hit->body, {hit->point.x(), hit->point.y(), hit->point.z()}, {n.x(), n.y(), n.z()}};
   } catch (const std::exception&) {
     return std::nullopt;
@@ -486,12 +486,12 @@ std::optional<TumourSpec> CaseDraft::spec(std::size_t k) const {
   return TumourSpec{distance(a->point, t->center), t->radius, t->stiffness, t->modulus, t->stiffening};
 }
 
-std::optional<exercise::Placement> CaseDraft::placement(std::size_t k) const {
+std::optional<scripted::Placement> CaseDraft::placement(std::size_t k) const {
   if (k >= tumour_count()) return std::nullopt;
   const json& t = doc_["tumors"][k];
   if (!t.is_object() || !t.contains("placement")) return std::nullopt;
   const json& p = t["placement"];
-  exercise::Placement out;
+  scripted::Placement out;
   for (auto [key, range] : {std::pair{"u", &out.u}, std::pair{"v", &out.v}, std::pair{"depth", &out.depth}}) {
     if (!p.is_object() || !p.contains(key) || !p[key].is_array() || p[key].size() != 2 || !p[key][0].is_number() ||
         !p[key][1].is_number()) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include "../common/numeric.hpp"
 
 namespace palpa::contact {
 namespace {
@@ -34,7 +35,6 @@ Vec3 position(const spline::BSplineSurface& sk, double u, double v) {
   return {p[0], p[1], p[2]};
 }
 
-double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
 
 FootPoint finish(const Local& l, double u, double v, const Vec3& q, int iterations, bool converged) {
   FootPoint f;
@@ -47,6 +47,86 @@ FootPoint finish(const Local& l, double u, double v, const Vec3& q, int iteratio
   f.iterations = iterations;
   f.converged = converged;
   return f;
+}
+
+// A step (du, dv) on the free parameters, and whether it is Newton's (else Gauss-Newton).
+struct Step {
+  double du = 0.0, dv = 0.0;
+  bool newton = true;
+};
+
+// Newton matrix; Gauss-Newton (J^T J, positive semi-definite) where the Hessian is not
+// positive definite, e.g. beyond the skeleton's radius of curvature.
+Step newton_step(const Local& l, const Vec3& r, double gu, double gv, bool free_u, bool free_v) {
+  const double guu = l.su.dot(l.su);
+  const double guv = l.su.dot(l.sv);
+  const double gvv = l.sv.dot(l.sv);
+  double huu = guu + l.suu.dot(r);
+  double huv = guv + l.suv.dot(r);
+  double hvv = gvv + l.svv.dot(r);
+  const double levenberg = 1e-12 * (guu + gvv) + std::numeric_limits<double>::min();
+  Step step;
+  if (free_u && free_v) {
+    if (!(huu > 0.0 && huu * hvv - huv * huv > 0.0)) {
+      huu = guu + levenberg;
+      huv = guv;
+      hvv = gvv + levenberg;
+      step.newton = false;
+    }
+    const double det = huu * hvv - huv * huv;
+    step.du = -(hvv * gu - huv * gv) / det;
+    step.dv = -(huu * gv - huv * gu) / det;
+  } else if (free_u) {
+    step.newton = huu > 0.0;
+    step.du = -gu / (step.newton ? huu : guu + levenberg);
+  } else {
+    step.newton = hvv > 0.0;
+    step.dv = -gv / (step.newton ? hvv : gvv + levenberg);
+  }
+  return step;
+}
+
+// Backtracking on the projected step: f must decrease. The full step is taken almost
+// always, so the trial point gets the whole local frame at once; later trials need only
+// the position. Returns false when no decrease is possible (a minimum to round-off);
+// else (un, vn) and their frame in `trial`.
+bool line_search(const spline::BSplineSurface& skeleton, const Vec3& q, double u, double v, double f,
+                 const Step& step, double& un, double& vn, Local& trial) {
+  double alpha = 1.0;
+  un = clamp01(u + step.du);
+  vn = clamp01(v + step.dv);
+  local_frame(skeleton, un, vn, trial);
+  double fn = 0.5 * (trial.s - q).squaredNorm();
+  if (fn < f) {
+    if (step.newton) return true;
+    // A Gauss-Newton step ignores the curvature of the skeleton, so where the distance
+    // is flat (a probe near the skeleton's centre of curvature) it undershoots by far:
+    // keep doubling it while f keeps falling.
+    for (int k = 0; k < 30; ++k) {
+      const double ue = clamp01(u + 2.0 * alpha * step.du);
+      const double ve = clamp01(v + 2.0 * alpha * step.dv);
+      if (ue == un && ve == vn) break;  // pinned by the box
+      const double fe = 0.5 * (position(skeleton, ue, ve) - q).squaredNorm();
+      if (!(fe < fn)) break;
+      alpha *= 2.0;
+      un = ue;
+      vn = ve;
+      fn = fe;
+    }
+    if (alpha > 1.0) local_frame(skeleton, un, vn, trial);
+    return true;
+  }
+  for (int k = 1; k < 30; ++k) {
+    alpha *= 0.5;
+    un = clamp01(u + alpha * step.du);
+    vn = clamp01(v + alpha * step.dv);
+    fn = 0.5 * (position(skeleton, un, vn) - q).squaredNorm();
+    if (fn < f) {
+      local_frame(skeleton, un, vn, trial);
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -72,109 +152,40 @@ FootPoint newton_foot_point(const spline::BSplineSurface& skeleton, const Vec3& 
       converged = true;
       break;
     }
-    // Newton matrix; Gauss-Newton (J^T J, positive semi-definite) where the Hessian is not
-    // positive definite, e.g. beyond the skeleton's radius of curvature.
-    const double guu = l.su.dot(l.su);
-    const double guv = l.su.dot(l.sv);
-    const double gvv = l.sv.dot(l.sv);
-    double huu = guu + l.suu.dot(r);
-    double huv = guv + l.suv.dot(r);
-    double hvv = gvv + l.svv.dot(r);
-    const double levenberg = 1e-12 * (guu + gvv) + std::numeric_limits<double>::min();
-    double du = 0.0;
-    double dv = 0.0;
-    bool newton_step = true;
-    if (free_u && free_v) {
-      if (!(huu > 0.0 && huu * hvv - huv * huv > 0.0)) {
-        huu = guu + levenberg;
-        huv = guv;
-        hvv = gvv + levenberg;
-        newton_step = false;
-      }
-      const double det = huu * hvv - huv * huv;
-      du = -(hvv * gu - huv * gv) / det;
-      dv = -(huu * gv - huv * gu) / det;
-    } else if (free_u) {
-      newton_step = huu > 0.0;
-      du = -gu / (newton_step ? huu : guu + levenberg);
-    } else {
-      newton_step = hvv > 0.0;
-      dv = -gv / (newton_step ? hvv : gvv + levenberg);
-    }
-    if (!std::isfinite(du) || !std::isfinite(dv)) break;
+    const Step step = newton_step(l, r, gu, gv, free_u, free_v);
+    if (!std::isfinite(step.du) || !std::isfinite(step.dv)) break;
     // Converged when the full step is below the tolerance. When what the step could gain
     // (-g.d/2) is below the round-off of f (f = |r|^2/2 with r = S - Q carries an error of
     // about eps |S| |r|), f can no longer judge it, but the gradient (Su.r, Sv.r) is still
     // accurate: take the step as it is and stop. This last step matters: the depth
     // R(u,v) - |PQ| is first-order in (u, v) through R.
-    if (std::max(std::abs(du), std::abs(dv)) < options.parameter_tolerance) {
+    if (std::max(std::abs(step.du), std::abs(step.dv)) < options.parameter_tolerance) {
       converged = true;
       break;
     }
-    const double gain = -0.5 * (gu * du + gv * dv);
+    const double gain = -0.5 * (gu * step.du + gv * step.dv);
     const double noise = 8.0 * std::numeric_limits<double>::epsilon() * l.s.norm() * r.norm();
-    if (newton_step && gain <= noise + std::numeric_limits<double>::min()) {
-      u = clamp01(u + du);
-      v = clamp01(v + dv);
+    if (step.newton && gain <= noise + std::numeric_limits<double>::min()) {
+      u = clamp01(u + step.du);
+      v = clamp01(v + step.dv);
       local_frame(skeleton, u, v, l);
       converged = true;
       ++it;
       break;
     }
-
-    // Backtracking on the projected step: f must decrease.
-    // The full step is taken almost always, so the trial point gets the whole local frame
-    // at once; later trials need only the position.
-    double alpha = 1.0;
-    bool accepted = false;
-    double un = clamp01(u + du);
-    double vn = clamp01(v + dv);
+    double un = u, vn = v;
     Local trial;
-    local_frame(skeleton, un, vn, trial);
-    double fn = 0.5 * (trial.s - q).squaredNorm();
-    if (fn < f) {
-      accepted = true;
-      // A Gauss-Newton step ignores the curvature of the skeleton, so where the distance
-      // is flat (a probe near the skeleton's centre of curvature) it undershoots by far:
-      // keep doubling it while f keeps falling.
-      if (!newton_step) {
-        for (int k = 0; k < 30; ++k) {
-          const double ue = clamp01(u + 2.0 * alpha * du);
-          const double ve = clamp01(v + 2.0 * alpha * dv);
-          if (ue == un && ve == vn) break;  // pinned by the box
-          const double fe = 0.5 * (position(skeleton, ue, ve) - q).squaredNorm();
-          if (!(fe < fn)) break;
-          alpha *= 2.0;
-          un = ue;
-          vn = ve;
-          fn = fe;
-        }
-        if (alpha > 1.0) local_frame(skeleton, un, vn, trial);
-      }
-    } else {
-      for (int k = 1; k < 30; ++k) {
-        alpha *= 0.5;
-        un = clamp01(u + alpha * du);
-        vn = clamp01(v + alpha * dv);
-        fn = 0.5 * (position(skeleton, un, vn) - q).squaredNorm();
-        if (fn < f) {
-          accepted = true;
-          local_frame(skeleton, un, vn, trial);
-          break;
-        }
-      }
-    }
-    if (!accepted) {  // no decrease possible: a minimum to round-off
+    if (!line_search(skeleton, q, u, v, f, step, un, vn, trial)) {
       converged = true;
       break;
     }
-    const double step = std::max(std::abs(un - u), std::abs(vn - v));
+    const double moved = std::max(std::abs(un - u), std::abs(vn - v));
     u = un;
     v = vn;
     l = trial;
     r = l.s - q;
     f = 0.5 * r.squaredNorm();
-    if (step < options.parameter_tolerance) {
+    if (moved < options.parameter_tolerance) {
       converged = true;
       ++it;
       break;

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include "../common/numeric.hpp"
 
 namespace palpa::contact {
 namespace {
 
-double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
 
 
 // Section 3.4's shear springs (docs/model.md): each ties the probe to the contour point

@@ -7,6 +7,7 @@
 
 #include "palpa/deform/control_point_modification.hpp"
 #include "palpa/spline/knot_refinement.hpp"
+#include "../common/numeric.hpp"
 
 namespace palpa::deform {
 namespace {
@@ -18,7 +19,6 @@ constexpr int kRadius = 3;
 constexpr int kTop = 4;
 constexpr int kBottom = 7;
 
-std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 // m: a displacement this small is invisible (the tessellation tolerance is 0.2 mm) and
 // changes no force (the force is computed on the rest body).
@@ -149,7 +149,7 @@ void DeformedBody::write_back(std::size_t point) {
   s[mat::kRadius] = rs[mat::kRadius] + x[kRadius];
 }
 
-void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q) {
+void DeformedBody::press(const contact::Contact& contact, const palpa::Vec3& q) {
   if (!contact.inside) {  // nothing to press: a probe outside lets go
     release();
     return;
@@ -158,7 +158,7 @@ void DeformedBody::press(const contact::Contact& contact, const contact::Vec3& q
   const double v = contact.foot.v;
   const double depth = std::max(0.0, contact.depth);
   const double g = options_.scheme == Scheme::SkeletonMoves ? 1.0 : options_.g;
-  const contact::Vec3 n = contact.outward;
+  const palpa::Vec3 n = contact.outward;
 
   // Targets: displacements from rest at (u, v). The near contour lands exactly on the
   // probe; the skeleton takes g of the press and the radius the rest (scheme (b); scheme

@@ -14,7 +14,7 @@ contact::Contact contact_of(const Touch& touch) {
   c.depth = touch.sample.depth;
   c.inside = touch.inside;
   c.side = touch.side;
-  c.outward = contact::Vec3(touch.outward[0], touch.outward[1], touch.outward[2]);
+  c.outward = palpa::Vec3(touch.outward[0], touch.outward[1], touch.outward[2]);
   return c;
 }
 
@@ -40,7 +40,7 @@ void DrawnScene::follow(const Touch& touch, int periods) {
   const int body = touch.sample.body;
   if (pressed_ >= 0 && pressed_ != body) drawn_[static_cast<std::size_t>(pressed_)].release();
   if (body >= 0 && static_cast<std::size_t>(body) < drawn_.size()) {
-    const contact::Vec3 q(touch.sample.position[0], touch.sample.position[1], touch.sample.position[2]);
+    const palpa::Vec3 q(touch.sample.position[0], touch.sample.position[1], touch.sample.position[2]);
     drawn_[static_cast<std::size_t>(body)].press(contact_of(touch), q);
   }
   pressed_ = body;

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include <fmt/format.h>
 
 namespace palpa::engine {
 namespace {
@@ -118,19 +119,16 @@ std::string LoopStats::summary() const {
   constexpr double kUs = 1e6;
   const double mean = mean_period();
   const double share = 100.0 * static_cast<double>(missed_) / static_cast<double>(ticks_);
-  char text[640];
-  std::snprintf(text, sizeof text,
-                "%llu tick%s at %.1f Hz (mean period %.1f us). "
-                "Period p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us. "
-                "Compute p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us. "
-                "%llu missed deadline%s (%.3g %%). "
-                "Percentiles are bin upper edges, at most 12.2 %% high.",
-                static_cast<unsigned long long>(ticks_), ticks_ == 1 ? "" : "s", mean > 0.0 ? 1.0 / mean : 0.0,
-                mean * kUs, period_percentile(0.5) * kUs, period_percentile(0.99) * kUs,
-                period_percentile(0.999) * kUs, max_period() * kUs, compute_percentile(0.5) * kUs,
-                compute_percentile(0.99) * kUs, compute_percentile(0.999) * kUs, max_compute() * kUs,
-                static_cast<unsigned long long>(missed_), missed_ == 1 ? "" : "s", share);
-  return text;
+  return fmt::format(
+      "{} tick{} at {:.1f} Hz (mean period {:.1f} us). "
+      "Period p50 {:.1f} us, p99 {:.1f} us, p99.9 {:.1f} us, max {:.1f} us. "
+      "Compute p50 {:.1f} us, p99 {:.1f} us, p99.9 {:.1f} us, max {:.1f} us. "
+      "{} missed deadline{} ({:.3g} %). "
+      "Percentiles are bin upper edges, at most 12.2 % high.",
+      ticks_, ticks_ == 1 ? "" : "s", mean > 0.0 ? 1.0 / mean : 0.0, mean * kUs, period_percentile(0.5) * kUs,
+      period_percentile(0.99) * kUs, period_percentile(0.999) * kUs, max_period() * kUs, compute_percentile(0.5) * kUs,
+      compute_percentile(0.99) * kUs, compute_percentile(0.999) * kUs, max_compute() * kUs, missed_,
+      missed_ == 1 ? "" : "s", share);
 }
 
 }  // namespace palpa::engine

@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstring>
 
+#include <fmt/format.h>
+
 namespace palpa::engine {
 namespace {
 
@@ -111,8 +113,13 @@ const LoopStats& RealtimeLoop::stats() {
 }
 
 void RealtimeLoop::run() {
-  // Scheduling: ask, and say what we got. Runs before the first tick, so the strings and
-  // system calls here are outside the loop.
+  // Before the first tick, so the strings and system calls here are outside the loop.
+  scheduling_ = set_up_scheduling();
+  started_.store(1, std::memory_order_release);
+  run_haptic_loop();
+}
+
+std::string RealtimeLoop::set_up_scheduling() {
   std::string message;
   if (options_.request_fifo) {
     sched_param param{};
@@ -120,10 +127,11 @@ void RealtimeLoop::run() {
     const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
     if (err == 0) {
       fifo_granted_.store(true, std::memory_order_release);
-      message = "haptic thread: SCHED_FIFO priority " + std::to_string(options_.fifo_priority) + " granted";
+      message = fmt::format("haptic thread: SCHED_FIFO priority {} granted", options_.fifo_priority);
     } else {
-      message = std::string("haptic thread: SCHED_FIFO refused (") + std::strerror(err) +
-                "); running at normal priority, expect jitter under load (grant CAP_SYS_NICE or an rtprio limit)";
+      message = fmt::format("haptic thread: SCHED_FIFO refused ({}); running at normal priority, expect jitter "
+                            "under load (grant CAP_SYS_NICE or an rtprio limit)",
+                            std::strerror(err));
     }
   } else {
     message = "haptic thread: normal priority (real-time scheduling not requested)";
@@ -133,13 +141,25 @@ void RealtimeLoop::run() {
     CPU_ZERO(&set);
     CPU_SET(static_cast<unsigned>(options_.cpu), &set);
     const int err = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
-    message += err == 0 ? "; pinned to CPU " + std::to_string(options_.cpu)
-                        : std::string("; pinning to CPU ") + std::to_string(options_.cpu) + " refused (" +
-                              std::strerror(err) + ")";
+    message += err == 0 ? fmt::format("; pinned to CPU {}", options_.cpu)
+                        : fmt::format("; pinning to CPU {} refused ({})", options_.cpu, std::strerror(err));
   }
-  scheduling_ = message;
-  started_.store(1, std::memory_order_release);
+  return message;
+}
 
+void RealtimeLoop::apply_commands() {
+  Command command;
+  while (commands_.try_pop(command)) {
+    switch (command.kind) {
+      case Command::Kind::Pause: paused_.store(true, std::memory_order_release); break;
+      case Command::Kind::Resume: paused_.store(false, std::memory_order_release); break;
+      case Command::Kind::Shear: engine_->set_shear(command.on); break;
+      case Command::Kind::Dynamics: engine_->set_dynamics(command.on); break;
+    }
+  }
+}
+
+void RealtimeLoop::run_haptic_loop() {
   const double rate = engine_->options().rate_hz;
   const long period_ns = static_cast<long>(1e9 / rate + 0.5);
   const double period = static_cast<double>(period_ns) * 1e-9;
@@ -167,21 +187,12 @@ void RealtimeLoop::run() {
     // would send now is stale, so ramp to zero from there.
     if (previous_start >= 0.0 && start - previous_start > watchdog) fault_until = start + ramp;
     if (stop_requested_.load(std::memory_order_acquire) && stop_at < 0.0) stop_at = start + ramp;
-    Command command;
-    while (commands_.try_pop(command)) {
-      switch (command.kind) {
-        case Command::Kind::Pause: paused_.store(true, std::memory_order_release); break;
-        case Command::Kind::Resume: paused_.store(false, std::memory_order_release); break;
-        case Command::Kind::Shear: engine_->set_shear(command.on); break;
-        case Command::Kind::Dynamics: engine_->set_dynamics(command.on); break;
-      }
-    }
+    apply_commands();
     const bool fault = paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
 
     const Sample s = engine_->tick(start, overrun, fault);
-    ++tick_number;
     Touch touch = engine_->last_touch();
-    touch.tick = tick_number;
+    touch.tick = ++tick_number;
     if (!touches_.try_push(touch)) dropped_touches_.fetch_add(1, std::memory_order_relaxed);
     if (!samples_.try_push(s)) dropped_.fetch_add(1, std::memory_order_relaxed);
 
@@ -197,9 +208,7 @@ void RealtimeLoop::run() {
     }
     // Behind by more than a period (a stall): restart the schedule from now, no burst of
     // catch-up ticks.
-    if (end > due + period) {
-      deadline = now;
-    }
+    if (end > due + period) deadline = now;
     if (stop_at >= 0.0 && start >= stop_at && s.force == std::array<double, 3>{}) break;
   }
   stats_.write_slot() = stats;

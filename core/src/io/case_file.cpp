@@ -4,7 +4,8 @@
 #include <cmath>
 #include <fstream>
 #include <set>
-#include <sstream>
+
+#include <fmt/format.h>
 
 #include "palpa/io/json_text.hpp"
 #include "palpa/mat/layer_stiffness.hpp"
@@ -30,13 +31,6 @@ std::string brief(const json& value) {
   return s;
 }
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 class Validator {
  public:
   void add(std::string where, std::string reason) {
@@ -48,7 +42,7 @@ class Validator {
   }
   bool ok() const { return problems_.empty(); }
   std::vector<Problem> take() {
-    if (dropped_ > 0) problems_.push_back({"/", std::to_string(dropped_) + " more problems not shown"});
+    if (dropped_ > 0) problems_.push_back({"/", fmt::format("{} more problems not shown", dropped_)});
     return std::move(problems_);
   }
   std::size_t count() const { return problems_.size() + dropped_; }
@@ -78,12 +72,12 @@ bool read_number(const json& value, const std::string& where, const char* name, 
     return false;
   }
   if (range.lo == 0.0 && out < 0.0) {
-    v.add(where, "negative " + std::string(name) + " " + fmt(out) + " " + range.unit);
+    v.add(where, fmt::format("negative {} {:.6g} {}", name, out, range.unit));
     return false;
   }
   if (out < range.lo || (range.lo_open && out == range.lo) || out > range.hi) {
-    v.add(where, std::string(name) + " " + fmt(out) + " " + range.unit + " is outside " +
-                     (range.lo_open ? "(" : "[") + fmt(range.lo) + ", " + fmt(range.hi) + "] " + range.unit);
+    v.add(where, fmt::format("{} {:.6g} {} is outside {}{:.6g}, {:.6g}] {}", name, out, range.unit,
+                             range.lo_open ? "(" : "[", range.lo, range.hi, range.unit));
     return false;
   }
   return true;
@@ -109,8 +103,7 @@ bool read_int(const json& obj, const std::string& base, const char* key, int lo,
                    : value.is_number_integer() ? static_cast<long double>(value.get<std::int64_t>())
                                                : static_cast<long double>(value.get<double>());
   if (big < lo || big > hi) {
-    v.add(where, std::string(key) + " " + brief(value) + " is outside [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "]");
+    v.add(where, fmt::format("{} {} is outside [{}, {}]", key, brief(value), lo, hi));
     return false;
   }
   out = static_cast<int>(big);
@@ -127,18 +120,17 @@ bool read_channel(const json& body, const std::string& base, const char* key, st
   }
   const json& arr = body[key];
   if (!arr.is_array()) {
-    v.add(where, std::string(key) + " must be an array of " + std::to_string(count) + " numbers");
+    v.add(where, fmt::format("{} must be an array of {} numbers", key, count));
     return false;
   }
   if (arr.size() != count) {
-    v.add(where, std::string(key) + " has " + std::to_string(arr.size()) + " values, expected rows*cols = " +
-                     std::to_string(count));
+    v.add(where, fmt::format("{} has {} values, expected rows*cols = {}", key, arr.size(), count));
     return false;
   }
   out.resize(count);
   bool good = true;
   for (std::size_t k = 0; k < count; ++k) {
-    good = read_number(arr[k], where + "/" + std::to_string(k), key, range, v, out[k]) && good;
+    good = read_number(arr[k], fmt::format("{}/{}", where, k), key, range, v, out[k]) && good;
   }
   return good;
 }
@@ -156,22 +148,21 @@ bool read_medial(const json& body, const std::string& base, std::size_t count, V
     return false;
   }
   if (arr.size() != count) {
-    v.add(where, "medial has " + std::to_string(arr.size()) + " points, expected rows*cols = " +
-                     std::to_string(count));
+    v.add(where, fmt::format("medial has {} points, expected rows*cols = {}", arr.size(), count));
     return false;
   }
   out.resize(count);
   const Range range{-L::kMaxCoordinate, L::kMaxCoordinate, false, "m"};
   bool good = true;
   for (std::size_t k = 0; k < count; ++k) {
-    const std::string pk = where + "/" + std::to_string(k);
+    const std::string pk = fmt::format("{}/{}", where, k);
     if (!arr[k].is_array() || arr[k].size() != 3) {
       v.add(pk, "a medial point must be an array of 3 numbers [x, y, z]");
       good = false;
       continue;
     }
     for (std::size_t c = 0; c < 3; ++c) {
-      good = read_number(arr[k][c], pk + "/" + std::to_string(c), "coordinate", range, v, out[k][c]) && good;
+      good = read_number(arr[k][c], fmt::format("{}/{}", pk, c), "coordinate", range, v, out[k][c]) && good;
     }
   }
   return good;
@@ -184,9 +175,10 @@ void check_boundary_radius(const mat::BodyGrid& g, const std::string& base, Vali
       if (i != 0 && i != g.rows - 1 && j != 0 && j != g.cols - 1) continue;
       const std::size_t k = static_cast<std::size_t>(i * g.cols + j);
       if (g.radius[k] != 0.0) {
-        v.add(base + "/radius/" + std::to_string(k),
-              "radius " + fmt(g.radius[k]) + " m on the grid boundary (point " + std::to_string(i) + ", " +
-                  std::to_string(j) + "); it must be 0 there so the top and bottom contours close");
+        v.add(fmt::format("{}/radius/{}", base, k),
+              fmt::format("radius {:.6g} m on the grid boundary (point {}, {}); it must be 0 there so the top and "
+                          "bottom contours close",
+                          g.radius[k], i, j));
       }
     }
   }
@@ -203,9 +195,9 @@ void check_plausible(const mat::BodyGrid& g, const std::string& base, bool media
         hi = std::max(hi, p[c]);
       }
       if (hi - lo > L::kMaxBodyExtent) {
-        v.add(base + "/medial", "not a plausible body: its skeleton spans " + fmt(hi - lo) + " m along " +
-                                    std::string(1, static_cast<char>('x' + c)) + " (at most " +
-                                    fmt(L::kMaxBodyExtent) + " m)");
+        v.add(base + "/medial",
+              fmt::format("not a plausible body: its skeleton spans {:.6g} m along {} (at most {:.6g} m)", hi - lo,
+                          static_cast<char>('x' + c), L::kMaxBodyExtent));
       }
     }
     const auto spacing = [&](int i, int j, int i2, int j2) {
@@ -218,9 +210,9 @@ void check_plausible(const mat::BodyGrid& g, const std::string& base, bool media
         const double far = std::max(i + 1 < g.rows ? spacing(i, j, i + 1, j) : 0.0,
                                     j + 1 < g.cols ? spacing(i, j, i, j + 1) : 0.0);
         if (far > L::kMaxPointSpacing) {
-          v.add(base + "/medial/" + std::to_string(i * g.cols + j),
-                "not a plausible body: a neighbouring skeleton point is " + fmt(far) + " m away (at most " +
-                    fmt(L::kMaxPointSpacing) + " m)");
+          v.add(fmt::format("{}/medial/{}", base, i * g.cols + j),
+                fmt::format("not a plausible body: a neighbouring skeleton point is {:.6g} m away (at most {:.6g} m)",
+                            far, L::kMaxPointSpacing));
           return;
         }
       }
@@ -229,9 +221,9 @@ void check_plausible(const mat::BodyGrid& g, const std::string& base, bool media
   if (radius_ok) {
     const auto thickest = std::max_element(g.radius.begin(), g.radius.end());
     if (thickest != g.radius.end() && 2.0 * *thickest > L::kMaxBodyThickness) {
-      v.add(base + "/radius/" + std::to_string(thickest - g.radius.begin()),
-            "not a plausible body: radius " + fmt(*thickest) + " m makes it " + fmt(2.0 * *thickest) +
-                " m thick (at most " + fmt(L::kMaxBodyThickness) + " m)");
+      v.add(fmt::format("{}/radius/{}", base, thickest - g.radius.begin()),
+            fmt::format("not a plausible body: radius {:.6g} m makes it {:.6g} m thick (at most {:.6g} m)", *thickest,
+                        2.0 * *thickest, L::kMaxBodyThickness));
     }
   }
 }
@@ -256,9 +248,8 @@ void check_coincident(const mat::BodyGrid& g, const std::string& base, Validator
   }
 
   auto report = [&](int i, int j, int i0, int j0) {
-    v.add(base + "/medial/" + std::to_string(i * g.cols + j),
-          "skeleton point (" + std::to_string(i) + ", " + std::to_string(j) + ") coincides with its neighbour (" +
-              std::to_string(i0) + ", " + std::to_string(j0) + ")");
+    v.add(fmt::format("{}/medial/{}", base, i * g.cols + j),
+          fmt::format("skeleton point ({}, {}) coincides with its neighbour ({}, {})", i, j, i0, j0));
   };
   for (int i = 0; i < g.rows; ++i) {
     for (int j = 0; j < g.cols; ++j) {
@@ -330,7 +321,7 @@ void read_tissue(const json& body, const std::string& base, std::size_t n, bool 
 
 void read_body(const json& body, std::size_t index, std::set<std::string>& ids, Validator& v,
                std::vector<mat::BodyGrid>& bodies) {
-  const std::string base = "/bodies/" + std::to_string(index);
+  const std::string base = fmt::format("/bodies/{}", index);
   if (!body.is_object()) {
     v.add(base, "a body must be an object");
     return;
@@ -342,7 +333,7 @@ void read_body(const json& body, std::size_t index, std::set<std::string>& ids, 
   } else if (!body["id"].is_string() || body["id"].get_ref<const std::string&>().empty()) {
     v.add(base + "/id", "id must be a non-empty string");
   } else if (utf8_length(body["id"].get_ref<const std::string&>()) > L::kMaxIdLength) {
-    v.add(base + "/id", "id is longer than " + std::to_string(L::kMaxIdLength) + " characters");
+    v.add(base + "/id", fmt::format("id is longer than {} characters", L::kMaxIdLength));
   } else if (std::any_of(body["id"].get_ref<const std::string&>().begin(), body["id"].get_ref<const std::string&>().end(),
                          [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
     v.add(base + "/id", "id must not contain control characters (ids appear in messages and reports)");
@@ -394,7 +385,7 @@ void read_placement(const json& p, const std::string& base, Validator& v) {
     const Range unit{0.0, 1.0, false, "(fraction)"};
     const bool lo_ok = read_number(range[0], where + "/0", key, unit, v, lo);
     const bool hi_ok = read_number(range[1], where + "/1", key, unit, v, hi);
-    if (lo_ok && hi_ok && lo > hi) v.add(where, std::string(key) + " range [" + fmt(lo) + ", " + fmt(hi) + "] is reversed");
+    if (lo_ok && hi_ok && lo > hi) v.add(where, fmt::format("{} range [{:.6g}, {:.6g}] is reversed", key, lo, hi));
   }
 }
 
@@ -403,7 +394,7 @@ void read_placement(const json& p, const std::string& base, Validator& v) {
 // Whether it lies inside its body needs the fitted body: scene::Scene::build checks that.
 void read_tumour(const json& t, std::size_t index, const std::set<std::string>& ids, bool bodies_ok, Validator& v,
                  std::vector<mat::Tumour>& out) {
-  const std::string base = "/tumors/" + std::to_string(index);
+  const std::string base = fmt::format("/tumors/{}", index);
   if (!t.is_object()) {
     v.add(base, "a tumour must be an object");
     return;
@@ -428,7 +419,7 @@ void read_tumour(const json& t, std::size_t index, const std::set<std::string>& 
     v.add(base + "/center", "center must be an array of 3 numbers [x, y, z]");
   } else {
     for (std::size_t c = 0; c < 3; ++c) {
-      read_number(t["center"][c], base + "/center/" + std::to_string(c), "coordinate",
+      read_number(t["center"][c], fmt::format("{}/center/{}", base, c), "coordinate",
                   {-L::kMaxCoordinate, L::kMaxCoordinate, false, "m"}, v, tumour.center[c]);
     }
   }
@@ -480,7 +471,7 @@ CaseFile validate(json doc, Validator& v) {
   } else if (!doc["title"].is_string()) {
     v.add("/title", std::string("title must be a string, not ") + doc["title"].type_name());
   } else if (utf8_length(doc["title"].get_ref<const std::string&>()) > L::kMaxTitleLength) {
-    v.add("/title", "title is longer than " + std::to_string(L::kMaxTitleLength) + " characters");
+    v.add("/title", fmt::format("title is longer than {} characters", L::kMaxTitleLength));
   } else {
     out.title = doc["title"].get<std::string>();
   }
@@ -490,7 +481,7 @@ CaseFile validate(json doc, Validator& v) {
   } else if (!doc["bodies"].is_array() || doc["bodies"].empty()) {
     v.add("/bodies", "bodies must be a non-empty array");
   } else if (doc["bodies"].size() > static_cast<std::size_t>(L::kMaxBodies)) {
-    v.add("/bodies", "more than " + std::to_string(L::kMaxBodies) + " bodies");
+    v.add("/bodies", fmt::format("more than {} bodies", L::kMaxBodies));
   } else {
     std::set<std::string> ids;
     for (std::size_t k = 0; k < doc["bodies"].size(); ++k) read_body(doc["bodies"][k], k, ids, v, out.bodies);

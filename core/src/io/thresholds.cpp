@@ -2,19 +2,13 @@
 
 #include <cmath>
 #include <set>
-#include <sstream>
+
+#include <fmt/format.h>
 
 namespace palpa::io {
 namespace {
 
 using nlohmann::json;
-
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
 
 // The allowed range of one "scoring" value (docs/scoring.md, "Case fields").
 struct Range {
@@ -66,16 +60,7 @@ constexpr const char* kMaxFalsePositives = "max_false_positives";
 constexpr int kMaxFalsePositivesLimit = 1000;
 
 std::string range_text(const Range& r) {
-  std::string s = r.lo_open ? "(" : "[";
-  s += fmt(r.lo);
-  s += ", ";
-  s += fmt(r.hi);
-  s += "]";
-  if (*r.unit != '\0') {
-    s += " ";
-    s += r.unit;
-  }
-  return s;
+  return fmt::format("{}{:.6g}, {:.6g}]{}{}", r.lo_open ? "(" : "[", r.lo, r.hi, *r.unit != '\0' ? " " : "", r.unit);
 }
 
 bool read_number(const json& value, const std::string& where, const char* name, const Range& range,
@@ -86,12 +71,7 @@ bool read_number(const json& value, const std::string& where, const char* name, 
   }
   const double x = value.get<double>();
   if (!std::isfinite(x) || x < range.lo || (range.lo_open && x == range.lo) || x > range.hi) {
-    std::string reason = name;
-    reason += " ";
-    reason += fmt(x);
-    reason += " is outside ";
-    reason += range_text(range);
-    problems.push_back({where, std::move(reason)});
+    problems.push_back({where, fmt::format("{} {:.6g} is outside {}", name, x, range_text(range))});
     return false;
   }
   out = x;
@@ -130,13 +110,8 @@ void read_scoring(const json& scoring, Thresholds& t, std::vector<Problem>& prob
       }
       const double n = value.get<double>();
       if (n < 0 || n > kMaxFalsePositivesLimit) {
-        std::string reason = kMaxFalsePositives;
-        reason += " ";
-        reason += fmt(n);
-        reason += " is outside [0, ";
-        reason += std::to_string(kMaxFalsePositivesLimit);
-        reason += "]";
-        problems.push_back({where, std::move(reason)});
+        problems.push_back(
+            {where, fmt::format("{} {:.6g} is outside [0, {}]", kMaxFalsePositives, n, kMaxFalsePositivesLimit)});
         bad.insert(key);
         continue;
       }
@@ -158,16 +133,16 @@ void read_scoring(const json& scoring, Thresholds& t, std::vector<Problem>& prob
   auto ok = [&](const char* key) { return !bad.contains(key); };
   if (ok("light_max") && ok("deep_min") && !(t.light_max < t.deep_min)) {
     problems.push_back({scoring.contains("deep_min") ? "/scoring/deep_min" : "/scoring/light_max",
-                        "light_max " + fmt(t.light_max) + " must be below deep_min " + fmt(t.deep_min) +
-                            " (light < medium < deep pressure)"});
+                        fmt::format("light_max {:.6g} must be below deep_min {:.6g} (light < medium < deep pressure)",
+                                    t.light_max, t.deep_min)});
     t.light_max = defaults.light_max;
     t.deep_min = defaults.deep_min;
   }
   if (ok("palpate_ratio_low") && ok("palpate_ratio_high") && t.palpate_ratio_low > t.palpate_ratio_high) {
     problems.push_back({scoring.contains("palpate_ratio_high") ? "/scoring/palpate_ratio_high"
                                                                : "/scoring/palpate_ratio_low",
-                        "palpate_ratio_low " + fmt(t.palpate_ratio_low) + " is above palpate_ratio_high " +
-                            fmt(t.palpate_ratio_high)});
+                        fmt::format("palpate_ratio_low {:.6g} is above palpate_ratio_high {:.6g}",
+                                    t.palpate_ratio_low, t.palpate_ratio_high)});
     t.palpate_ratio_low = defaults.palpate_ratio_low;
     t.palpate_ratio_high = defaults.palpate_ratio_high;
   }
@@ -193,8 +168,7 @@ void read_interval(const json& part, const std::string& base, const char* key, d
   const double a = value[0].get<double>();
   const double b = value[1].get<double>();
   if (!(std::isfinite(a) && std::isfinite(b) && 0.0 <= a && a < b && b <= 1.0)) {
-    problems.push_back({where, std::string(key) + " [" + fmt(a) + ", " + fmt(b) + "] must satisfy 0 <= " + key +
-                                   "0 < " + key + "1 <= 1"});
+    problems.push_back({where, fmt::format("{0} [{1:.6g}, {2:.6g}] must satisfy 0 <= {0}0 < {0}1 <= 1", key, a, b)});
     return;
   }
   lo = a;
@@ -217,7 +191,7 @@ void read_region(const json& doc, const json& region, Thresholds& t, std::vector
   }
   std::vector<RegionPart> parts;
   for (std::size_t k = 0; k < region.size(); ++k) {
-    const std::string base = "/exam_region/" + std::to_string(k);
+    const std::string base = fmt::format("/exam_region/{}", k);
     const json& p = region[k];
     if (!p.is_object()) {
       problems.push_back({base, "an exam region part must be an object {\"body\", \"u\", \"v\"}"});

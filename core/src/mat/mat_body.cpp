@@ -1,20 +1,21 @@
 #include "palpa/mat/mat_body.hpp"
 
+#include "palpa/vec3.hpp"
+
 #include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include "../common/numeric.hpp"
 
 namespace palpa::mat {
 namespace {
 
-std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
-using Vec3 = std::array<double, 3>;
 
-Vec3 cross(const double* a, const double* b) {
+Array3 cross(const double* a, const double* b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double norm(const double* a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
@@ -23,7 +24,7 @@ double norm(const double* a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2]
 // round-off leaves ~1e-16 of the pole's coordinates in the collapsed direction.
 constexpr double kDegenerate = 1e-10;
 
-bool unit(Vec3 n, double out[3]) {
+bool unit(Array3 n, double out[3]) {
   const double len = norm(n.data());
   if (!(len > 0.0) || !std::isfinite(len)) return false;
   for (std::size_t c = 0; c < 3; ++c) out[c] = n[c] / len;
@@ -62,7 +63,7 @@ bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v,
   const bool u_collapsed = lu <= kDegenerate * lv;
   const bool v_collapsed = lv <= kDegenerate * lu;
   if (!u_collapsed && !v_collapsed) {
-    const Vec3 n = cross(su, sv);
+    const Array3 n = cross(su, sv);
     if (norm(n.data()) > kDegenerate * lu * lv) return unit(n, normal);
     return false;  // tangents parallel: no normal at this point
   }
@@ -73,13 +74,13 @@ bool skeleton_normal(const spline::BSplineSurface& skeleton, double u, double v,
   // normal's limit from the interior is +-(Su x Suv), the sign pointing into the domain.
   if (v_collapsed && lu > 0.0) {
     const double sign = u >= skeleton.knots_u().back() ? -1.0 : 1.0;
-    Vec3 n = cross(su, suv);
+    Array3 n = cross(su, suv);
     for (double& c : n) c *= sign;
     return unit(n, normal);
   }
   if (u_collapsed && lv > 0.0) {
     const double sign = v >= skeleton.knots_v().back() ? -1.0 : 1.0;
-    Vec3 n = cross(suv, sv);
+    Array3 n = cross(suv, sv);
     for (double& c : n) c *= sign;
     return unit(n, normal);
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include "../common/numeric.hpp"
 
 namespace palpa::render {
 namespace {
@@ -13,7 +14,6 @@ constexpr int kSegmentLimit = 4096;
 // Shares of the tolerance tried by choose_grid for the direction planned first.
 constexpr int kShareSteps = 20;
 
-std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 void check_options(const TessellationOptions& o) {
   if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) {

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include <fmt/format.h>
 
 namespace palpa::scene {
 
@@ -86,7 +87,7 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       scene.bodies_.push_back(
           {std::move(body), std::move(search), bounds, {}, grid.force_model, layer, grid.poisson, grid.stiffening});
     } catch (const mat::FitError& e) {
-      problems.push_back({"/bodies/" + std::to_string(k), std::string("cannot fit: ") + e.what()});
+      problems.push_back({fmt::format("/bodies/{}", k), std::string("cannot fit: ") + e.what()});
     }
   }
   if (!problems.empty()) throw io::CaseError(source, std::move(problems));
@@ -96,7 +97,7 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
     const auto it = std::find_if(scene.bodies_.begin(), scene.bodies_.end(),
                                  [&](const SceneBody& b) { return b.body.id() == t.body; });
     if (it == scene.bodies_.end()) {
-      problems.push_back({"/tumors/" + std::to_string(k) + "/body", "unknown body \"" + t.body + "\""});
+      problems.push_back({fmt::format("/tumors/{}/body", k), "unknown body \"" + t.body + "\""});
       continue;
     }
     // The centre's depth alone is not enough where the surface slopes: see tumour_clearance.
@@ -105,12 +106,10 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       const Vec3 c(t.center[0], t.center[1], t.center[2]);
       const bool centre_inside =
           contact::make_contact(it->body, it->search.closest(it->body.skeleton(), c), c).depth >= 0.0;
-      char text[220];
-      std::snprintf(text, sizeof text,
-                    centre_inside ? "tumour (radius %.4g m) is not inside body \"%s\": it reaches %.4g m beyond the surface"
-                                  : "tumour (radius %.4g m) is not inside body \"%s\": its centre is %.4g m outside the surface",
-                    t.radius, t.body.c_str(), -worst);
-      problems.push_back({"/tumors/" + std::to_string(k), text});
+      problems.push_back({fmt::format("/tumors/{}", k),
+                          fmt::format("tumour (radius {:.4g} m) is not inside body \"{}\": {} {:.4g} m {} the surface",
+                                      t.radius, t.body, centre_inside ? "it reaches" : "its centre is", -worst,
+                                      centre_inside ? "beyond" : "outside")});
       continue;
     }
     mat::Tumour placed = t;
@@ -118,7 +117,7 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       const auto& grid = file.bodies[static_cast<std::size_t>(it - scene.bodies_.begin())];
       const double around = modulus_around(grid, t.center);
       if (!(around > 0.0)) {
-        problems.push_back({"/tumors/" + std::to_string(k) + "/modulus",
+        problems.push_back({fmt::format("/tumors/{}/modulus", k),
                             "a tumour given by its modulus (Pa) needs its body \"" + t.body +
                                 "\" given by \"modulus\" too, with tissue stiffer than 0 Pa around it"});
         continue;

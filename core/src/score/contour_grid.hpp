@@ -12,10 +12,10 @@
 
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/io/thresholds.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::score::detail {
 
-using Vec3 = Eigen::Vector3d;
 
 /// The top-contour point over SK(u, v) and the local radius R(u, v), evaluated exactly.
 struct TopPoint {

@@ -1,4 +1,4 @@
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "palpa/score/score.hpp"
 
@@ -11,12 +11,6 @@ json region_json(const Thresholds& t) {
   json out = json::array();
   for (const auto& p : t.exam_region) out.push_back({{"body", p.body}, {"u", {p.u0, p.u1}}, {"v", {p.v0, p.v1}}});
   return out;
-}
-
-std::string line(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buffer[200];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c);
-  return buffer;
 }
 
 }  // namespace
@@ -37,7 +31,7 @@ nlohmann::json to_json(const Score& s, bool with_maps) {
   out["short_exam"] = s.short_exam;
   out["palpate_search_ratio"] = s.palpate_search_ratio;
   out["pressure"] = {{"light_s", s.pressure.light_s}, {"medium_s", s.pressure.medium_s}, {"deep_s", s.pressure.deep_s}};
-  out["pattern"] = {{"kind", s.pattern.kind},
+  out["pattern"] = {{"kind", to_string(s.pattern.kind)},
                     {"path_length_m", s.pattern.path_length_m},
                     {"strip_fraction", s.pattern.strip_fraction},
                     {"strip_spacing_mm", s.pattern.strip_spacing_mm},
@@ -95,29 +89,30 @@ nlohmann::json to_json(const Score& s, bool with_maps) {
 std::string summary_text(const Score& s) {
   std::string out;
   out += s.abandoned ? "ABANDONED (not an exam)" : s.passed ? "PASSED" : "NOT PASSED";
-  out += line("  score %.0f / 100\n", 100.0 * s.score);
+  out += fmt::format("  score {:.0f} / 100\n", 100.0 * s.score);
   int found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
-  out += line("tumours found     %.0f of %.0f", found, double(s.tumours.size()));
-  out += line(" (sensitivity %.0f%%)\n", 100.0 * s.sensitivity);
-  out += line("false positives   %.0f\n", s.false_positives);
+  out += fmt::format("tumours found     {} of {}", found, s.tumours.size());
+  out += fmt::format(" (sensitivity {:.0f}%)\n", 100.0 * s.sensitivity);
+  out += fmt::format("false positives   {}\n", s.false_positives);
   if (!s.localization_error_mm.empty()) {
     out += "localization      ";
     for (std::size_t k = 0; k < s.localization_error_mm.size(); ++k)
-      out += line(k == 0 ? "%.1f mm" : ", %.1f mm", s.localization_error_mm[k]);
+      out += fmt::format("{}{:.1f} mm", k == 0 ? "" : ", ", s.localization_error_mm[k]);
     out += "\n";
   }
-  out += line("coverage          %.0f%% (deep %.0f%%)\n", 100.0 * s.coverage, 100.0 * s.deep_coverage);
-  out += line("duration          %.0f s active, %.0f s in contact\n", s.duration_s, s.contact_time_s);
+  out += fmt::format("coverage          {:.0f}% (deep {:.0f}%)\n", 100.0 * s.coverage, 100.0 * s.deep_coverage);
+  out += fmt::format("duration          {:.0f} s active, {:.0f} s in contact\n", s.duration_s, s.contact_time_s);
   const double contact = s.contact_time_s > 0 ? s.contact_time_s : 1.0;
-  out += line("pressure          light %.0f%%, medium %.0f%%, ", 100.0 * s.pressure.light_s / contact,
-              100.0 * s.pressure.medium_s / contact);
-  out += line("deep %.0f%%\n", 100.0 * s.pressure.deep_s / contact);
-  out += line("peak force        %.1f N\n", s.peak_force_n);
-  out += line("palpate/search    %.2f\n", s.palpate_search_ratio);
-  out += "search pattern    " + s.pattern.kind;
-  out += line(" (strips %.0f%%, spacing %.0f mm, ", 100.0 * s.pattern.strip_fraction, s.pattern.strip_spacing_mm);
-  out += line("revisits %.0f%%)\n", 100.0 * s.pattern.revisit_fraction);
+  out += fmt::format("pressure          light {:.0f}%, medium {:.0f}%, ", 100.0 * s.pressure.light_s / contact,
+                     100.0 * s.pressure.medium_s / contact);
+  out += fmt::format("deep {:.0f}%\n", 100.0 * s.pressure.deep_s / contact);
+  out += fmt::format("peak force        {:.1f} N\n", s.peak_force_n);
+  out += fmt::format("palpate/search    {:.2f}\n", s.palpate_search_ratio);
+  out += "search pattern    " + to_string(s.pattern.kind);
+  out += fmt::format(" (strips {:.0f}%, spacing {:.0f} mm, ", 100.0 * s.pattern.strip_fraction,
+                     s.pattern.strip_spacing_mm);
+  out += fmt::format("revisits {:.0f}%)\n", 100.0 * s.pattern.revisit_fraction);
   for (const auto& g : s.gates) out += std::string(g.passed ? "PASS " : "FAIL ") + g.message + "\n";
   for (const auto& n : s.notes) out += "note: " + n + "\n";
   return out;

@@ -19,6 +19,12 @@ constexpr double kLongestResampledStep = 0.004;  // m, two resampled steps (4 m/
 constexpr double kAxisTolerance = 20.0 * kPi / 180.0;  // a segment "along" the axis
 constexpr double kLongRun = 0.020;              // m: a straight run this long is a strip
 constexpr int kBins = 36;                       // 5 degree direction bins over [0, 180)
+// The classes' bounds (docs/scoring.md, "Search pattern"): a complete search is efficient
+// when most of its path runs in strips and little of it goes over covered ground again;
+// an incomplete one is localized when it stayed in one compact part under half the region.
+constexpr double kEfficientStripFraction = 0.6;
+constexpr double kEfficientRevisitFraction = 0.3;
+constexpr double kLocalizedCoverage = 0.5;
 
 struct Segment {
   int body;
@@ -96,11 +102,8 @@ double median(std::vector<double> x) {
   return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
 }
 
-}  // namespace
-
-SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids,
-                              double pad_radius) {
-  SearchPattern out;
+// Path length over the top contour and the share of it over ground covered before.
+void measure_length(const std::vector<PathPoint>& path, SearchPattern& out) {
   double revisited = 0.0;
   for (std::size_t k = 1; k < path.size(); ++k) {
     if (path[k].piece != path[k - 1].piece) continue;
@@ -108,18 +111,21 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     out.path_length_m += seg;
     if (path[k].revisit) revisited += seg;
   }
-  if (out.path_length_m <= 0.0) return out;
-  out.revisit_fraction = revisited / out.path_length_m;
+  if (out.path_length_m > 0.0) out.revisit_fraction = revisited / out.path_length_m;
+}
 
+// The dominant axis: the 45 degree window (+-20 degrees and a half bin) that holds the
+// most path, refined by the axial mean of the segments in it (angles doubled). `total`
+// gets the resampled path's length; no axis when it is 0.
+std::optional<double> dominant_axis(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids,
+                                    double& total) {
   std::array<double, kBins> histogram{};
-  double total = 0.0;
+  total = 0.0;
   for_each_segment(path, grids, [&](const Segment& s) {
     histogram[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(s.angle / kPi * kBins)))] += s.length;
     total += s.length;
   });
-  if (total <= 0.0) return out;
-  // The dominant axis: the 45 degree window (+-20 degrees and a half bin) that holds the
-  // most path, refined by the axial mean of the segments in it (angles doubled).
+  if (total <= 0.0) return std::nullopt;
   int best = 0;
   double best_sum = -1.0;
   for (int b = 0; b < kBins; ++b) {
@@ -137,14 +143,19 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     c2 += s.length * std::cos(2 * s.angle);
     s2 += s.length * std::sin(2 * s.angle);
   });
-  const double axis = 0.5 * std::atan2(s2, c2);
+  return 0.5 * std::atan2(s2, c2);
+}
 
-  // Strips: straight runs along the axis at least kLongRun long, ordered by their position
-  // across it in the top-down view; each keeps its points on the top contour.
-  struct Run {
-    double position;
-    std::vector<Vec3> points;
-  };
+// A straight run along the axis at least kLongRun long: its position across the axis in
+// the top-down view, and its points on the top contour.
+struct Run {
+  double position;
+  std::vector<Vec3> points;
+};
+
+// The runs of each body along `axis`; `along` gets the length of path along the axis.
+std::vector<std::vector<Run>> runs_along(const std::vector<PathPoint>& path,
+                                         const std::vector<const ContourGrid*>& grids, double axis, double& along) {
   std::vector<std::vector<Run>> runs(grids.size());
   const double nx = -std::sin(axis), ny = std::cos(axis);
   double run_length = 0.0, run_moment = 0.0;
@@ -156,7 +167,7 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     run_length = run_moment = 0.0;
     run_points.clear();
   };
-  double along = 0.0;
+  along = 0.0;
   std::optional<Segment> previous;
   for_each_segment(path, grids, [&](const Segment& s) {
     if (previous && previous->piece != s.piece) close_run(previous->body);
@@ -171,12 +182,14 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
     previous = s;
   });
   if (previous) close_run(previous->body);
-  out.strip_fraction = along / total;
+  return runs;
+}
 
-  // Neighbouring strips: positions closer than half a pad are one strip passed twice. The
-  // gap between two strips is measured on the skin, not in the top-down view (which
-  // shortens it on a dome's slopes): the median over one strip's points of the distance to
-  // the nearest point of the next.
+// Neighbouring strips: positions closer than half a pad are one strip passed twice. The
+// gap between two strips is measured on the skin, not in the top-down view (which
+// shortens it on a dome's slopes): the median over one strip's points of the distance to
+// the nearest point of the next. Returns the median gap in mm (0: fewer than two strips).
+double strip_spacing_mm(std::vector<std::vector<Run>>& runs, double pad_radius) {
   std::vector<double> gaps;
   for (auto& body_runs : runs) {
     std::sort(body_runs.begin(), body_runs.end(), [](const Run& a, const Run& b) { return a.position < b.position; });
@@ -198,18 +211,55 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
       gaps.push_back(median(std::move(nearest)));
     }
   }
-  out.strip_spacing_mm = 1000.0 * median(gaps);
+  return 1000.0 * median(gaps);
+}
+
+}  // namespace
+
+SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vector<const ContourGrid*>& grids,
+                              double pad_radius) {
+  SearchPattern out;
+  measure_length(path, out);
+  if (out.path_length_m <= 0.0) return out;
+  double total = 0.0;
+  const std::optional<double> axis = dominant_axis(path, grids, total);
+  if (!axis) return out;
+  double along = 0.0;
+  std::vector<std::vector<Run>> runs = runs_along(path, grids, *axis, along);
+  out.strip_fraction = along / total;
+  out.strip_spacing_mm = strip_spacing_mm(runs, pad_radius);
   return out;
 }
 
-std::string classify_pattern(const SearchPattern& pattern, bool any_contact, double coverage, bool compact,
-                             const Thresholds& thresholds) {
-  if (!any_contact) return "none";
-  if (coverage >= thresholds.min_coverage) {
-    return pattern.strip_fraction >= 0.6 && pattern.revisit_fraction <= 0.3 ? "efficient" : "thorough";
+}  // namespace palpa::score::detail
+
+namespace palpa::score {
+
+std::string to_string(PatternKind kind) {
+  switch (kind) {
+    case PatternKind::Sporadic: return "sporadic";
+    case PatternKind::Localized: return "localized";
+    case PatternKind::Thorough: return "thorough";
+    case PatternKind::Efficient: return "efficient";
+    case PatternKind::None: break;
   }
-  if (coverage < 0.5 && compact) return "localized";
-  return "sporadic";
+  return "none";
+}
+
+}  // namespace palpa::score
+
+namespace palpa::score::detail {
+
+PatternKind classify_pattern(const SearchPattern& pattern, bool any_contact, double coverage, bool compact,
+                            const Thresholds& thresholds) {
+  if (!any_contact) return PatternKind::None;
+  if (coverage >= thresholds.min_coverage) {
+    const bool strips = pattern.strip_fraction >= kEfficientStripFraction;
+    return strips && pattern.revisit_fraction <= kEfficientRevisitFraction ? PatternKind::Efficient
+                                                                           : PatternKind::Thorough;
+  }
+  if (coverage < kLocalizedCoverage && compact) return PatternKind::Localized;
+  return PatternKind::Sporadic;
 }
 
 }  // namespace palpa::score::detail

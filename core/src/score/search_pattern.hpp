@@ -24,7 +24,7 @@ SearchPattern measure_pattern(const std::vector<PathPoint>& path, const std::vec
                               double pad_radius);
 
 /// The class from the measures, the coverage and whether the covered area is compact.
-std::string classify_pattern(const SearchPattern& pattern, bool any_contact, double coverage, bool compact,
+PatternKind classify_pattern(const SearchPattern& pattern, bool any_contact, double coverage, bool compact,
                              const Thresholds& thresholds);
 
 }  // namespace palpa::score::detail

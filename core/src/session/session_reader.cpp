@@ -4,11 +4,12 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <string_view>
+
+#include <fmt/format.h>
 
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/json_text.hpp"
@@ -18,11 +19,7 @@
 namespace palpa::session {
 namespace {
 
-std::string hex32(std::uint32_t value) {
-  std::array<char, 16> text{};
-  std::snprintf(text.data(), text.size(), "0x%08X", value);
-  return text.data();
-}
+std::string hex32(std::uint32_t value) { return fmt::format("0x{:08X}", value); }
 
 /// Reads one session file; every failure is a SessionError naming the file and the place.
 class Reader {
@@ -263,14 +260,10 @@ void Reader::read_meta(Session& session) {
     fail("meta format_version", "not an integer: '" + get("format_version") + "'");
   }
   if (version > kFormatVersion) {
-    std::string reason = "format version ";
-    reason += std::to_string(version);
-    reason += " is newer than this Palpa reads (";
-    reason += std::to_string(kFormatVersion);
-    reason += ")";
-    fail("meta format_version", reason);
+    fail("meta format_version",
+         fmt::format("format version {} is newer than this Palpa reads ({})", version, kFormatVersion));
   }
-  if (version < 1) fail("meta format_version", "format version " + std::to_string(version) + " does not exist");
+  if (version < 1) fail("meta format_version", fmt::format("format version {} does not exist", version));
 
   auto& info = session.info;
   info.id = get("id");
@@ -325,16 +318,8 @@ struct Row {
   std::int64_t key = 0;
 
   std::string where(const char* column) const {
-    std::string w = table;
-    w += ' ';
-    w += key_name;
-    w += ' ';
-    w += std::to_string(key);
-    if (column != nullptr) {
-      w += ": column ";
-      w += column;
-    }
-    return w;
+    if (column == nullptr) return fmt::format("{} {} {}", table, key_name, key);
+    return fmt::format("{} {} {}: column {}", table, key_name, key, column);
   }
   bool is_null(int column) const { return sqlite3_column_type(stmt, column) == SQLITE_NULL; }
   double real(int column, const char* name) const {
@@ -353,18 +338,9 @@ struct Row {
     }
     const std::int64_t value = sqlite3_column_int64(stmt, column);
     if (value < lo || value > hi) {
-      std::string reason = "must be ";
-      if (hi == std::numeric_limits<std::int64_t>::max()) {
-        reason += ">= ";
-        reason += std::to_string(lo);
-      } else {
-        reason += "in ";
-        reason += std::to_string(lo);
-        reason += "..";
-        reason += std::to_string(hi);
-      }
-      reason += ", not ";
-      reason += std::to_string(value);
+      const std::string reason = hi == std::numeric_limits<std::int64_t>::max()
+                                     ? fmt::format("must be >= {}, not {}", lo, value)
+                                     : fmt::format("must be in {}..{}, not {}", lo, hi, value);
       throw SessionError(file, where(name), reason);
     }
     return value;
@@ -410,8 +386,8 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
     // the reservation itself fail; a longer session grows the vector as it reads.
     const auto rows = std::max<sqlite3_int64>(0, sqlite3_column_int64(count.get(), 0));
     if (rows > max_samples) {
-      fail("samples", std::to_string(rows) + " rows: more than a session may hold (" + std::to_string(max_samples) +
-                          "; 72000000 is 20 hours at 1 kHz)");
+      fail("samples", fmt::format("{} rows: more than a session may hold ({}; 72000000 is 20 hours at 1 kHz)", rows,
+                                  max_samples));
     }
     session.samples.reserve(static_cast<std::size_t>(std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22)));
   }
@@ -425,7 +401,7 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
     const int rc = sqlite3_step(query.get());
     if (rc == SQLITE_DONE) break;
     if (rc != SQLITE_ROW) {
-      if (previous_tick >= 0) where = "samples after tick " + std::to_string(previous_tick);
+      if (previous_tick >= 0) where = fmt::format("samples after tick {}", previous_tick);
       fail_sqlite(where, rc);
     }
     row.key = sqlite3_column_int64(query.get(), 0);

@@ -6,11 +6,11 @@
 #include <string>
 
 #include "palpa/spline/basis.hpp"
+#include "../common/numeric.hpp"
 
 namespace palpa::spline {
 namespace {
 
-std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 double step_length(const double* a, const double* b, Parameterization method) {
   const double dx = b[0] - a[0];

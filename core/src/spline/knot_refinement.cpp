@@ -5,11 +5,11 @@
 #include <stdexcept>
 
 #include "palpa/spline/basis.hpp"
+#include "../common/numeric.hpp"
 
 namespace palpa::spline {
 namespace {
 
-std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 // A5.4 for one curve: n + 1 control points of `dim` values (P), degree p, knots U, sorted
 // knots X to insert. Returns Q (n + 2 + r control points) and writes Ubar.

@@ -14,7 +14,7 @@
 
 #include "palpa/author/presets.hpp"
 #include "palpa/author/stiffness_map.hpp"
-#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/io/case_file.hpp"
 
 namespace palpa::author {
@@ -96,7 +96,7 @@ class CaseDraft {
   void edit_tumour(std::size_t k, const TumourSpec& spec);
   void remove_tumour(std::size_t k);
   /// Sets (or with nothing, removes) tumour k's randomization rule.
-  void set_placement(std::size_t k, const std::optional<exercise::Placement>& rule);
+  void set_placement(std::size_t k, const std::optional<scripted::Placement>& rule);
   /// Sets body b's stiffness from a map (apply_stiffness_map). Throws std::invalid_argument
   /// for a bad map or range, io::CaseError when the body cannot be read or fitted.
   void apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max);
@@ -126,7 +126,7 @@ class CaseDraft {
   std::optional<SurfacePoint> anchor(std::size_t k) const;
   /// depth (distance from the anchor), radius and stiffness or modulus of tumour k.
   std::optional<TumourSpec> spec(std::size_t k) const;
-  std::optional<exercise::Placement> placement(std::size_t k) const;
+  std::optional<scripted::Placement> placement(std::size_t k) const;
 
   // --- Undo ---
   bool can_undo() const { return !undo_.empty(); }

@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "palpa/spline/bspline_surface.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::contact {
 
-using Vec3 = Eigen::Vector3d;
 
 struct FootPoint {
   double u = 0.0;

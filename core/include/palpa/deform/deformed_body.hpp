@@ -67,7 +67,7 @@ class DeformedBody {
   /// Moves the surface under the probe onto the probe (the contact is computed on the rest
   /// model, so the force it gives is the force for what is drawn). The pressed control
   /// points are held there until the next press or release.
-  void press(const contact::Contact& contact, const contact::Vec3& q);
+  void press(const contact::Contact& contact, const palpa::Vec3& q);
   /// The probe left: every control point springs back.
   void release();
   /// Advances the free control points by dt seconds; a body at rest does nothing.

@@ -6,10 +6,10 @@
 #include <string>
 
 #include <Eigen/Core>
+#include "palpa/vec3.hpp"
 
 namespace palpa::engine {
 
-using Vec3 = Eigen::Vector3d;
 
 struct DeviceCapabilities {
   std::string name;

@@ -85,7 +85,10 @@ class RealtimeLoop {
   bool realtime_priority() const { return fifo_granted_.load(std::memory_order_acquire); }
 
  private:
-  void run();
+  void run();                      // the haptic thread: set_up_scheduling, then the loop
+  std::string set_up_scheduling();  // SCHED_FIFO and CPU pinning as asked; says what was granted
+  void run_haptic_loop();
+  void apply_commands();            // pause, resume, shear, dynamics: between ticks
   void run_display();
   int snapshot_every() const;
 

@@ -51,7 +51,7 @@ struct CaseLimits {
   static constexpr double kMaxCoordinate = 100.0;  // m
   static constexpr double kMaxRadius = 10.0;       // m
   static constexpr double kMaxStiffness = 1e9;     // N/m
-  static constexpr double kMaxModulus = 1e9;       // Pa (bone is about 1e10; soft tissue 1e2-1e6)
+  static constexpr double kMaxModulus = 1e9;       // Pa (bone is about 1e10; soft tissues 1e2-1e6)
   static constexpr double kMaxPoisson = 0.499;     // below 0.5: the bonded-layer factor needs nu < 1/2
   static constexpr double kMaxStiffening = 20.0;   // b per unit strain: Krouskop's carcinoma is 11
   static constexpr double kMaxDamping = 1e7;       // N s/m

@@ -7,10 +7,10 @@
 
 #include "palpa/render/tessellation.hpp"
 #include "palpa/scene/scene.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::render {
 
-using Vec3 = Eigen::Vector3d;
 
 struct SurfacePick {
   std::size_t body = 0;

@@ -12,7 +12,6 @@
 
 namespace palpa::scene {
 
-using contact::Vec3;
 
 /// Axis-aligned box that contains a body: SK's control points (convex hull property)
 /// grown by the largest radius control value, which bounds R(u, v).

@@ -45,9 +45,17 @@ struct PressureLevels {
   double light_s = 0.0, medium_s = 0.0, deep_s = 0.0;  ///< contact time at each level
 };
 
+/// Search-pattern classes after Azari et al. 2015 (docs/scoring.md, "Search pattern");
+/// None: no contact at all.
+enum class PatternKind { None, Sporadic, Localized, Thorough, Efficient };
+
+/// The class's name in files and reports: "none", "sporadic", "localized", "thorough",
+/// "efficient".
+std::string to_string(PatternKind kind);
+
 /// Search pattern after Azari et al. 2015: sporadic, localized, thorough or efficient.
 struct SearchPattern {
-  std::string kind;              ///< "sporadic" | "localized" | "thorough" | "efficient" | "none"
+  PatternKind kind = PatternKind::None;
   double path_length_m = 0.0;    ///< length of the contact path over the top contour
   double strip_fraction = 0.0;   ///< share of the path along the dominant strip direction
   double strip_spacing_mm = 0.0; ///< median spacing between neighbouring strips (0: no strips)

@@ -64,13 +64,13 @@ class FalconDevice final : public engine::Device {
 
   const engine::DeviceCapabilities& capabilities() const override { return caps_; }
   engine::DeviceStatus read(double t, engine::DevicePose& pose) noexcept override;
-  engine::DeviceStatus write_force(const engine::Vec3& force) noexcept override;
-  void place_workspace(const engine::Vec3& scene_center, double scale) override;
+  engine::DeviceStatus write_force(const palpa::Vec3& force) noexcept override;
+  void place_workspace(const palpa::Vec3& scene_center, double scale) override;
   std::string fault_message() const override;
 
   /// Device frame (falcon_kinematics.hpp) <-> scene, with the placement.
-  engine::Vec3 to_scene(const falcon::Vec3& device_position) const;
-  falcon::Vec3 force_to_device(const engine::Vec3& scene_force) const;
+  palpa::Vec3 to_scene(const palpa::Vec3& device_position) const;
+  palpa::Vec3 force_to_device(const palpa::Vec3& scene_force) const;
   /// The torque words the haptic thread last asked for (tests).
   std::array<std::int16_t, 3> commanded_torque() const;
 
@@ -114,7 +114,7 @@ class FalconDevice final : public engine::Device {
   std::atomic<bool> stop_{false};
   std::thread thread_;
   // haptic thread
-  falcon::Vec3 device_position_ = falcon::Kinematics::workspace_center();
+  palpa::Vec3 device_position_ = falcon::Kinematics::workspace_center();
   std::uint64_t solved_count_ = 0;  ///< the reading device_position_ was solved from
   bool solved_ = true;              ///< whether that reading had a position
   int bad_readings_ = 0;            ///< reads in a row without one

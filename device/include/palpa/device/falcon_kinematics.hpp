@@ -29,10 +29,10 @@
 #include <optional>
 
 #include <Eigen/Core>
+#include "palpa/vec3.hpp"
 
 namespace palpa::device::falcon {
 
-using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
 struct Geometry {

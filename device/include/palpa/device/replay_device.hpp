@@ -27,7 +27,7 @@ class ReplayDevice final : public engine::Device {
   const engine::DeviceCapabilities& capabilities() const override { return caps_; }
   /// t = 0 is the session's first sample.
   engine::DeviceStatus read(double t, engine::DevicePose& pose) noexcept override;
-  engine::DeviceStatus write_force(const engine::Vec3& force) noexcept override;
+  engine::DeviceStatus write_force(const palpa::Vec3& force) noexcept override;
   std::string fault_message() const override;
 
   double duration() const { return t_.back() - t_.front(); }
@@ -38,7 +38,7 @@ class ReplayDevice final : public engine::Device {
   std::string source_;
   std::vector<double> t_;
   double end_ = 0.0;  // s: the last sample plus half a tick
-  std::vector<engine::Vec3> position_;
+  std::vector<palpa::Vec3> position_;
   std::vector<std::uint32_t> buttons_;
   std::size_t cursor_ = 0;  // the sample of the last read: playback moves forward
   std::atomic<bool> ended_{false};  // read by fault_message() from another thread

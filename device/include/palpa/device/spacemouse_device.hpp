@@ -21,7 +21,6 @@
 
 namespace palpa::device {
 
-using engine::Vec3;
 
 enum class SpaceMouseMode : std::uint8_t { Position, Rate };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The bodies as VTK actors: per body a top and a bottom vtkPolyData whose points, normals
-// and triangles are copied in place from core's tessellation (trainer::DisplayMeshes),
+// and triangles are copied in place from core's tessellation (live::DisplayMeshes),
 // only for bodies that changed. The pipeline is built once; a frame only overwrites
 // arrays and marks them Modified.
 #include <vector>
@@ -16,17 +16,17 @@
 #include <vtkSmartPointer.h>
 
 #include "palpa/render/tessellation.hpp"
-#include "palpa/trainer/display_meshes.hpp"
+#include "palpa/live/display_meshes.hpp"
 
 namespace palpa::ui {
 
 class BodySurfaces {
  public:
   /// Builds one actor per contour and adds it to the renderer.
-  BodySurfaces(const trainer::DisplayMeshes& meshes, vtkRenderer* renderer);
+  BodySurfaces(const live::DisplayMeshes& meshes, vtkRenderer* renderer);
   /// Copies the meshes of the bodies that changed in the last DisplayMeshes::update
   /// (all of them when `all`); returns how many bodies were copied.
-  std::size_t sync(const trainer::DisplayMeshes& meshes, bool all = false);
+  std::size_t sync(const live::DisplayMeshes& meshes, bool all = false);
   /// Off-screen culling: hides (or shows) both contours of a body.
   void set_visible(std::size_t body, bool visible);
   /// 1: opaque; lower to see the tumours inside.

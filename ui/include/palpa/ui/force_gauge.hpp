@@ -5,7 +5,7 @@
 #include <QStringList>
 #include <QWidget>
 
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 
 namespace palpa::ui {
 
@@ -14,8 +14,8 @@ class ForceGauge : public QWidget {
  public:
   /// light_max, deep_min: the case's thresholds (fractions of the thickness 2R).
   ForceGauge(double light_max, double deep_min, QWidget* parent = nullptr);
-  void set_contact(const trainer::ContactInfo& contact);
-  const trainer::ContactInfo& contact() const { return contact_; }
+  void set_contact(const live::ContactInfo& contact);
+  const live::ContactInfo& contact() const { return contact_; }
   /// The two lines under the bar, e.g. "7.4 N  medium" and "depth 13.1 mm (32 % of 41 mm)".
   QStringList lines() const;
   /// Both lines in one, for messages and tests.
@@ -35,7 +35,7 @@ class ForceGauge : public QWidget {
  private:
   double light_max_, deep_min_;
   double scale_;  // the bar's full length, as a fraction of the thickness
-  trainer::ContactInfo contact_;
+  live::ContactInfo contact_;
 };
 
 }  // namespace palpa::ui

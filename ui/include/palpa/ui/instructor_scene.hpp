@@ -40,7 +40,7 @@ class InstructorScene {
 
   bool has_bodies() const { return scene_ != nullptr; }
   /// The rest top contour under a ray (see render::TopContourPicker).
-  std::optional<render::SurfacePick> pick(const render::Vec3& origin, const render::Vec3& direction) const;
+  std::optional<render::SurfacePick> pick(const palpa::Vec3& origin, const palpa::Vec3& direction) const;
   /// Bounds of the drawn body surfaces {xmin, xmax, ymin, ymax, zmin, zmax}.
   std::array<double, 6> bounds() const;
   std::size_t tumour_count() const { return tumours_.size(); }

@@ -15,6 +15,7 @@ class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
+class QVBoxLayout;
 class QTableWidget;
 
 namespace palpa::ui {
@@ -34,7 +35,7 @@ class InstructorTumourPanel : public QGroupBox {
   /// The material box shows a modulus in kPa (else a stiffness in N/m).
   bool material_in_kpa() const { return in_kpa_; }
   /// The rule the controls show, or nothing when randomization is off.
-  std::optional<exercise::Placement> placement() const;
+  std::optional<scripted::Placement> placement() const;
   /// Highlights rows holding a problem (red) with their reasons as tooltips; `field` is the
   /// part of the pointer after /tumors/K ("radius", "placement/u", ...), for the controls.
   void clear_problems();
@@ -57,10 +58,14 @@ class InstructorTumourPanel : public QGroupBox {
   void selection_changed(std::optional<std::size_t> k);
   /// The selected tumour's spec: the draft's, with the one field the instructor changed.
   void spec_changed(std::size_t k, const palpa::author::TumourSpec& spec);
-  void placement_changed(std::size_t k, const std::optional<palpa::exercise::Placement>& rule);
+  void placement_changed(std::size_t k, const std::optional<palpa::scripted::Placement>& rule);
   void remove_requested(std::size_t k);
 
  private:
+  void build_table(QVBoxLayout* layout);
+  void build_spec_form(QVBoxLayout* layout);
+  void build_placement_rule(QVBoxLayout* layout);
+  void connect_controls();
   void show_selected();
   /// Emits the selected tumour's spec with only `changed`'s field from the boxes.
   void emit_spec(const QDoubleSpinBox* changed);

@@ -54,7 +54,7 @@ class InstructorWindow : public QMainWindow {
   QAction* undo_action() const { return undo_; }
   QAction* redo_action() const { return redo_; }
   /// Where a scene point (m) appears in the view (widget pixels).
-  QPoint to_view(const render::Vec3& point) const;
+  QPoint to_view(const palpa::Vec3& point) const;
   /// Where "Try it" records its sessions (created when needed).
   void set_sessions_dir(const std::filesystem::path& dir) { sessions_dir_ = dir; }
   /// The device "Try it" opens the trainee window with, called once per try (e.g. the

@@ -18,7 +18,7 @@
 #include "palpa/scene/scene.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/replay.hpp"
-#include "palpa/trainer/display_meshes.hpp"
+#include "palpa/live/display_meshes.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
 class QComboBox;
@@ -94,7 +94,7 @@ class ReviewWindow : public QMainWindow {
   std::filesystem::path file_;
   session::TimeSpan span_;
   std::unique_ptr<scene::Scene> scene_;
-  std::unique_ptr<trainer::DisplayMeshes> meshes_;
+  std::unique_ptr<live::DisplayMeshes> meshes_;
   std::unique_ptr<BodySurfaces> surfaces_;
 
   VtkView* view_ = nullptr;

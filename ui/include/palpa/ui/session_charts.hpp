@@ -70,6 +70,7 @@ class SessionCharts : public QWidget {
 
  private:
   void build(const session::Session& session, const score::Score& score, const scene::Scene* scene);
+  void add_plots(bool show_limit, double duration, double deepest_mm);
 
   void on_press();
 

@@ -2,7 +2,7 @@
 // The trainee exercise window: the 3D view of the case (bodies deforming under the probe,
 // drawn as a fingertip), the force gauge, the marks, Finish and the score card, and a
 // status bar with the haptic loop's health. Everything it shows comes from
-// trainer::LiveExercise; everything the trainee does goes to it.
+// live::LiveExercise; everything the trainee does goes to it.
 //
 // Mouse: the pointer picks a point on the body and the finger follows the skin there at
 // the chosen pressure; the wheel (or Up/Down) steps the pressure through light, medium and
@@ -18,7 +18,7 @@
 
 #include <vtkSmartPointer.h>
 
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
 class QCheckBox;
@@ -44,11 +44,11 @@ class TraineeWindow : public QMainWindow {
   static constexpr const char* kCloseWithoutAsking = "palpaCloseWithoutAsking";
   /// Takes the exercise; starts it (session recording, haptic loop) unless `start` is false
   /// (a screenshot needs no session). Throws what LiveExercise::start throws.
-  TraineeWindow(std::unique_ptr<trainer::LiveExercise> exercise, const QString& case_name, bool start = true,
+  TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const QString& case_name, bool start = true,
                 QWidget* parent = nullptr);
   ~TraineeWindow() override;
 
-  trainer::LiveExercise& exercise() { return *exercise_; }
+  live::LiveExercise& exercise() { return *exercise_; }
   VtkView* view() const { return view_; }
   ForceGauge* gauge() const { return gauge_; }
   /// The message shown when the chosen device faulted and the mouse took over (hidden before).
@@ -56,9 +56,9 @@ class TraineeWindow : public QMainWindow {
   BodySurfaces& surfaces() { return *surfaces_; }
   vtkRenderer* renderer() const { return renderer_; }
   /// Where a scene point (m) appears in the view (widget pixels).
-  QPoint to_view(const trainer::Vec3& point) const;
+  QPoint to_view(const palpa::Vec3& point) const;
   /// The pressure chosen with the wheel or the keys (level mode).
-  const trainer::PressureDial& pressure() const { return dial_; }
+  const live::PressureDial& pressure() const { return dial_; }
   /// Force mode: the finger sinks until |F| reaches this (N); 0 in level mode.
   double force_target() const { return force_target_; }
   /// The line under the gauge that names the chosen pressure, e.g. "Pressure: medium, step 2 of 3".
@@ -105,6 +105,8 @@ class TraineeWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
 
  private:
+  QWidget* build_side_panel(QWidget* central, QPushButton*& mark_button);
+  void build_status_bar();
   void build_scene();
   void update_status();
   void reveal(const score::Score& score);
@@ -118,7 +120,7 @@ class TraineeWindow : public QMainWindow {
   std::size_t cull_bodies();
   void request_render() { render_requested_ = true; }
 
-  std::unique_ptr<trainer::LiveExercise> exercise_;
+  std::unique_ptr<live::LiveExercise> exercise_;
   VtkView* view_ = nullptr;
   ForceGauge* gauge_ = nullptr;
   QLabel* device_banner_ = nullptr;  ///< shown once the chosen device faulted (unplugged)
@@ -143,10 +145,10 @@ class TraineeWindow : public QMainWindow {
   bool render_requested_ = true;
   bool skip_unchanged_ = true;
   QElapsedTimer since_render_;
-  trainer::Vec3 drawn_probe_ = trainer::Vec3::Zero();
+  palpa::Vec3 drawn_probe_ = palpa::Vec3::Zero();
   static constexpr int kIdleRedrawMs = 250;
   static constexpr double kProbeMoveToDraw = 1e-5;  ///< m: a tenth of a pixel at the closest zoom
-  trainer::PressureDial dial_;
+  live::PressureDial dial_;
   double force_target_ = 0.0;  // N; 0: level mode
   int wheel_rest_ = 0;         // wheel angle not yet a whole notch
   QLabel* pressure_label_ = nullptr;

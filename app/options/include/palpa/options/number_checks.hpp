@@ -4,9 +4,9 @@
 // CLI11's own Range and PositiveNumber let "nan" through (every comparison with NaN is
 // false) and print bounds such as 1.79769e+308.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <charconv>
-#include <cstdio>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -15,12 +15,6 @@
 namespace palpa::options {
 
 namespace detail {
-
-inline std::string shown(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
 
 // The whole of `text` as a finite double, or NaN.
 inline double parse_finite(const std::string& text) {
@@ -35,7 +29,7 @@ inline double parse_finite(const std::string& text) {
 
 /// A finite number in [lo, hi]; `unit` (e.g. "s", "N") follows the bounds in the messages.
 inline CLI::Validator finite_in(double lo, double hi, const std::string& unit = "") {
-  const std::string range = detail::shown(lo) + " to " + detail::shown(hi) + (unit.empty() ? "" : " " + unit);
+  const std::string range = fmt::format("{:g} to {:g}{}", lo, hi, unit.empty() ? "" : " " + unit);
   return CLI::Validator(
       [lo, hi, range](std::string& text) {
         const double x = detail::parse_finite(text);
@@ -48,7 +42,7 @@ inline CLI::Validator finite_in(double lo, double hi, const std::string& unit = 
 
 /// A finite number above 0 and at most hi.
 inline CLI::Validator finite_positive(double hi, const std::string& unit = "") {
-  const std::string range = "above 0, at most " + detail::shown(hi) + (unit.empty() ? "" : " " + unit);
+  const std::string range = fmt::format("above 0, at most {:g}{}", hi, unit.empty() ? "" : " " + unit);
   return CLI::Validator(
       [hi, range](std::string& text) {
         const double x = detail::parse_finite(text);
@@ -62,7 +56,7 @@ inline CLI::Validator finite_positive(double hi, const std::string& unit = "") {
 /// An integer in [lo, hi], written in decimal digits only (no sign beyond a leading '-', no
 /// exponent, no fraction).
 inline CLI::Validator integer_in(long long lo, long long hi) {
-  const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
+  const std::string range = fmt::format("{} to {}", lo, hi);
   return CLI::Validator(
       [lo, hi, range](std::string& text) {
         long long x = 0;

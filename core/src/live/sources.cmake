@@ -1,4 +1,4 @@
-# Sources of core/trainer: the live trainee exercise under the GUI (see core/CMakeLists.txt).
+# Sources of core/live: the live trainee exercise under the GUI (see core/CMakeLists.txt).
 target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/display_meshes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/live_exercise.cpp

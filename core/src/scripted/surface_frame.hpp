@@ -5,10 +5,10 @@
 #include <Eigen/Core>
 
 #include "palpa/mat/mat_body.hpp"
+#include "palpa/vec3.hpp"
 
-namespace palpa::exercise::detail {
+namespace palpa::scripted::detail {
 
-using Vec3 = Eigen::Vector3d;
 
 struct SurfaceFrame {
   Vec3 skeleton = Vec3::Zero();
@@ -31,4 +31,4 @@ inline SurfaceFrame frame_at(const mat::MatBody& body, double u, double v) {
   return f;
 }
 
-}  // namespace palpa::exercise::detail
+}  // namespace palpa::scripted::detail

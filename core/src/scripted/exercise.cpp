@@ -1,12 +1,13 @@
-#include "palpa/exercise/exercise.hpp"
+#include "palpa/scripted/exercise.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <random>
+
+#include <fmt/format.h>
 
 #include "palpa/version.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
 std::string iso8601_utc(std::int64_t unix_seconds) {
   // Civil date from days since 1970-01-01 (H. Hinnant's days_from_civil, inverted):
@@ -26,11 +27,7 @@ std::string iso8601_utc(std::int64_t unix_seconds) {
   const std::int64_t day = doy - (153 * mp + 2) / 5 + 1;
   const std::int64_t month = mp < 10 ? mp + 3 : mp - 9;
   const std::int64_t year = yoe + era * 400 + (month <= 2 ? 1 : 0);
-  char text[96];
-  std::snprintf(text, sizeof text, "%04lld-%02lld-%02lldT%02lld:%02lld:%02lldZ", static_cast<long long>(year),
-                static_cast<long long>(month), static_cast<long long>(day), static_cast<long long>(rem / 3600),
-                static_cast<long long>(rem % 3600 / 60), static_cast<long long>(rem % 60));
-  return text;
+  return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", year, month, day, rem / 3600, rem % 3600 / 60, rem % 60);
 }
 
 std::string iso8601_utc_now() {
@@ -44,9 +41,7 @@ session::SessionInfo exercise_session_info(const io::CaseFile& placed, const std
                                            const std::string& started_at, double rate_hz) {
   session::SessionInfo info;
   std::random_device entropy;
-  char id[17];
-  std::snprintf(id, sizeof id, "%08x%08x", static_cast<unsigned>(entropy()), static_cast<unsigned>(entropy()));
-  info.id = id;
+  info.id = fmt::format("{:08x}{:08x}", static_cast<unsigned>(entropy()), static_cast<unsigned>(entropy()));
   info.trainee = trainee;
   info.device = device_name;
   info.software_version = palpa::kVersion;
@@ -61,4 +56,4 @@ session::SessionInfo exercise_session_info(const io::CaseFile& placed, const std
   return info;
 }
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

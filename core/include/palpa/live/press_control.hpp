@@ -12,10 +12,10 @@
 #include "palpa/scene/scene.hpp"
 #include "palpa/io/thresholds.hpp"
 #include "palpa/render/surface_pick.hpp"
+#include "palpa/vec3.hpp"
 
-namespace palpa::trainer {
+namespace palpa::live {
 
-using Vec3 = Eigen::Vector3d;
 
 enum class PressureLevel : std::uint8_t { None, Light, Medium, Deep };
 const char* to_string(PressureLevel level);
@@ -110,4 +110,4 @@ class SurfaceFollower {
   double force_target_ = 0.0;
 };
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

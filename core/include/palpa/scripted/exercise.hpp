@@ -8,11 +8,11 @@
 #include <string>
 
 #include "palpa/engine/engine.hpp"
-#include "palpa/exercise/scripted_trainee.hpp"
+#include "palpa/scripted/scripted_trainee.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/session/session.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
 struct ExerciseOptions {
   engine::EngineOptions engine{};
@@ -80,4 +80,4 @@ session::SessionInfo exercise_session_info(const io::CaseFile& placed, const std
                                            const std::string& trainee, const std::string& device_name,
                                            const std::string& started_at, double rate_hz = 1000.0);
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

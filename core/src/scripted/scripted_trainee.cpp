@@ -1,4 +1,4 @@
-#include "palpa/exercise/scripted_trainee.hpp"
+#include "palpa/scripted/scripted_trainee.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "surface_frame.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
 using detail::frame_at;
 
@@ -662,4 +662,4 @@ void ScriptedTrainee::add_false_marks() noexcept {
   }
 }
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

@@ -9,7 +9,7 @@
 #include "palpa/render/tessellation.hpp"
 #include "palpa/scene/scene.hpp"
 
-namespace palpa::trainer {
+namespace palpa::live {
 
 class DisplayMeshes {
  public:
@@ -49,4 +49,4 @@ class DisplayMeshes {
   render::TessellationOptions options_;
 };
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

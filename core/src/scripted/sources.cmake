@@ -1,4 +1,4 @@
-# Sources of core/exercise (see core/CMakeLists.txt).
+# Sources of core/scripted (see core/CMakeLists.txt).
 target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/tumour_placement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/scripted_trainee.cpp

@@ -1,4 +1,4 @@
-#include "palpa/exercise/tumour_placement.hpp"
+#include "palpa/scripted/tumour_placement.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include "palpa/scene/scene.hpp"
 #include "surface_frame.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
 std::optional<Placement> placement_of(const io::CaseFile& file, std::size_t index) {
   const auto& doc = file.document;
@@ -65,7 +65,7 @@ io::CaseFile place_tumours(const io::CaseFile& file, std::uint64_t seed, const s
       const double d = rng.uniform(rule->depth[0], rule->depth[1]);
       const auto f = detail::frame_at(body->body, u, v);
       if (!f.ok) continue;
-      const detail::Vec3 c = f.top - d * 2.0 * f.radius * f.normal;
+      const palpa::Vec3 c = f.top - d * 2.0 * f.radius * f.normal;
       t.center = {c.x(), c.y(), c.z()};
       if (scene::tumour_clearance(body->body, body->search, t) < 0.0) continue;
       bool clear = true;
@@ -89,4 +89,4 @@ io::CaseFile place_tumours(const io::CaseFile& file, std::uint64_t seed, const s
   return out;
 }
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

@@ -1,8 +1,8 @@
-#include "palpa/trainer/display_meshes.hpp"
+#include "palpa/live/display_meshes.hpp"
 
 #include <algorithm>
 
-namespace palpa::trainer {
+namespace palpa::live {
 
 DisplayMeshes::DisplayMeshes(const scene::Scene& scene, const deform::DeformOptions& deform,
                              const render::TessellationOptions& options)
@@ -54,4 +54,4 @@ std::size_t DisplayMeshes::update(const engine::SceneSnapshot& snapshot) {
   return changed;
 }
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

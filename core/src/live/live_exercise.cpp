@@ -1,16 +1,17 @@
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
-#include "palpa/exercise/exercise.hpp"
-#include "palpa/exercise/tumour_placement.hpp"
+#include <fmt/format.h>
+
+#include "palpa/scripted/exercise.hpp"
+#include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/session/session_reader.hpp"
 
-namespace palpa::trainer {
+namespace palpa::live {
 
 namespace {
 
@@ -26,7 +27,7 @@ io::Thresholds thresholds_of(const io::CaseFile& placed, const std::string& sour
 LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_source, const LiveOptions& options)
     : options_(options),
       case_source_(case_source),
-      placed_(exercise::place_tumours(file, options.seed, case_source)),
+      placed_(scripted::place_tumours(file, options.seed, case_source)),
       scene_(std::make_unique<scene::Scene>(scene::Scene::build(placed_, case_source))),
       thresholds_(thresholds_of(placed_, case_source)),
       device_(options.device_settling),
@@ -57,9 +58,9 @@ LiveExercise::~LiveExercise() {
 
 std::string LiveExercise::start() {
   if (started_) throw std::logic_error("the exercise has already started");
-  auto info = exercise::exercise_session_info(placed_, case_source_, options_.seed, exercise::Style::Expert,
+  auto info = scripted::exercise_session_info(placed_, case_source_, options_.seed, scripted::Style::Expert,
                                               options_.trainee, fallback_.capabilities().name,
-                                              exercise::iso8601_utc_now(), options_.engine.rate_hz);
+                                              scripted::iso8601_utc_now(), options_.engine.rate_hz);
   info.extra = nlohmann::json::object();  // not a scripted exercise: no style, the GUI mode instead
   info.extra["mode"] = options_.mode;
   if (options_.session_path.has_parent_path()) std::filesystem::create_directories(options_.session_path.parent_path());
@@ -154,10 +155,7 @@ void LiveExercise::handle_device_switch() {
     // The virtual device takes over where the chosen one was last seen.
     device_.set_target(fallback_.last_position());
     fallback_.resume();
-    char at[64];
-    std::snprintf(at, sizeof at, " at t = %.3f s", fallback_.switched_at());
-    device_note_ = device_message_;
-    device_note_ += at;
+    device_note_ = fmt::format("{} at t = {:.3f} s", device_message_, fallback_.switched_at());
     // Recorded as a pause: the force ramps to zero and nothing is palpated until the virtual
     // device has taken over. A trainee already paused needs no second pause.
     if (started_ && !finished_ && !paused_) {
@@ -257,4 +255,4 @@ void LiveExercise::end(const std::string& note) {
   if (!error.empty()) throw session::SessionError(options_.session_path.string(), "recorder", error);
 }
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

@@ -11,7 +11,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/mat/mat_body.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
 /// A tumour's randomization rule: closed ranges within [0, 1].
 struct Placement {
@@ -57,4 +57,4 @@ inline constexpr int kMaxPlacementDraws = 200;
 io::CaseFile place_tumours(const io::CaseFile& file, std::uint64_t seed, const std::string& source,
                            const mat::FitOptions& options = {});
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

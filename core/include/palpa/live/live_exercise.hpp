@@ -23,11 +23,11 @@
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_recorder.hpp"
 #include "palpa/session/session_writer.hpp"
-#include "palpa/trainer/display_meshes.hpp"
-#include "palpa/trainer/press_control.hpp"
+#include "palpa/live/display_meshes.hpp"
+#include "palpa/live/press_control.hpp"
 #include "palpa/render/surface_pick.hpp"
 
-namespace palpa::trainer {
+namespace palpa::live {
 
 struct LiveOptions {
   std::string trainee = "trainee";    ///< recorded in the session; non-empty
@@ -186,4 +186,4 @@ class LiveExercise {
   std::string device_note_;           // what finish() adds to the End note
 };
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

@@ -16,10 +16,10 @@
 #include "palpa/engine/device.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/session/session.hpp"
+#include "palpa/vec3.hpp"
 
-namespace palpa::exercise {
+namespace palpa::scripted {
 
-using Vec3 = Eigen::Vector3d;
 
 enum class Style : std::uint8_t { Expert, Sloppy, Light };
 
@@ -259,4 +259,4 @@ class ScriptedTrainee final : public engine::Device {
   std::int64_t next_mark_ = 1;
 };
 
-}  // namespace palpa::exercise
+}  // namespace palpa::scripted

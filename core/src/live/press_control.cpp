@@ -1,10 +1,10 @@
-#include "palpa/trainer/press_control.hpp"
+#include "palpa/live/press_control.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-namespace palpa::trainer {
+namespace palpa::live {
 
 const char* to_string(PressureLevel level) {
   switch (level) {
@@ -152,4 +152,4 @@ std::optional<Vec3> SurfaceFollower::advance(double dt, double felt) {
   return frame.top + offset * frame.normal;
 }
 
-}  // namespace palpa::trainer
+}  // namespace palpa::live

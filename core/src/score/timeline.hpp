@@ -1,0 +1,20 @@
+#pragma once
+// The active part of a session: start to end minus pauses (docs/scoring.md, "Duration").
+#include <utility>
+#include <vector>
+
+#include "palpa/session/session.hpp"
+
+namespace palpa::score::detail {
+
+struct Timeline {
+  double start = 0.0, end = 0.0;
+  std::vector<std::pair<double, double>> pauses;  ///< clipped to [start, end], in order
+  double active = 0.0;                            ///< end - start - pauses, >= 0
+};
+
+/// From the first Start and End events (the first and last sample when one is missing)
+/// and the Pause/Resume pairs between them; a pause left open runs to the end.
+Timeline timeline_of(const session::Session& session);
+
+}  // namespace palpa::score::detail
