@@ -1,7 +1,10 @@
 # The application's window management (app/gui/app_windows) and the shared File menu,
 # under Xvfb like the other window tests.
-add_executable(ui_app_tests ui/app_windows_test.cpp ${PROJECT_SOURCE_DIR}/app/gui/app_windows.cpp
-               ${PROJECT_SOURCE_DIR}/app/gui/gui_device.cpp)
+add_executable(ui_app_tests
+  ui/app_windows_test.cpp
+  ${PROJECT_SOURCE_DIR}/app/gui/app_windows.cpp  # the code under test, from the application
+  ${PROJECT_SOURCE_DIR}/app/gui/gui_device.cpp
+)
 set_target_properties(ui_app_tests PROPERTIES AUTOMOC ON)
 target_include_directories(ui_app_tests PRIVATE ${PROJECT_SOURCE_DIR}/app/gui)
 target_link_libraries(ui_app_tests PRIVATE palpa_ui palpa_device Qt5::Test)

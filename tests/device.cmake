@@ -14,7 +14,9 @@ palpa_warnings(device_tests)
 gtest_discover_tests(device_tests TEST_PREFIX "device." DISCOVERY_TIMEOUT 60)
 
 # read()/write_force() in the haptic thread allocate nothing (counting operator new of its own).
-add_executable(device_alloc_test device/device_alloc_test.cpp)
+add_executable(device_alloc_test
+  device/device_alloc_test.cpp
+)
 target_link_libraries(device_alloc_test PRIVATE palpa_device palpa_core GTest::gtest GTest::gtest_main)
 palpa_warnings(device_alloc_test)
 gtest_discover_tests(device_alloc_test TEST_PREFIX "device." DISCOVERY_TIMEOUT 60)

@@ -1,6 +1,8 @@
 # Instructor mode (the authoring window, QtTest under Xvfb; included by tests/CMakeLists.txt
 # when PALPA_BUILD_GUI is on, after ui.cmake, which finds xvfb-run).
-add_executable(ui_instructor_tests ui/instructor_window_test.cpp)
+add_executable(ui_instructor_tests
+  ui/instructor_window_test.cpp
+)
 set_target_properties(ui_instructor_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_instructor_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_instructor_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"

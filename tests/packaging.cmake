@@ -1,7 +1,9 @@
 # Packaging and install, included by tests/CMakeLists.txt.
 
 # Where the bundled data is found at run time (core io/data_paths).
-add_executable(data_paths_tests packaging/data_paths_test.cpp)
+add_executable(data_paths_tests
+  packaging/data_paths_test.cpp
+)
 target_link_libraries(data_paths_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(data_paths_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(data_paths_tests)

@@ -13,7 +13,9 @@ palpa_warnings(report_tests)
 gtest_discover_tests(report_tests TEST_PREFIX "report." DISCOVERY_TIMEOUT 60)
 
 # Writes small sessions with known content for the score and batch CLI tests.
-add_executable(make_test_sessions report/make_test_sessions.cpp)
+add_executable(make_test_sessions
+  report/make_test_sessions.cpp
+)
 target_link_libraries(make_test_sessions PRIVATE palpa_core)
 palpa_warnings(make_test_sessions)
 

@@ -3,11 +3,11 @@ find_package(GTest REQUIRED)
 include(GoogleTest)
 
 add_executable(score_tests
-  core/score_thresholds_test.cpp
-  core/score_marks_test.cpp
-  core/score_coverage_test.cpp
-  core/score_session_test.cpp
-  core/score_pattern_test.cpp
+  core/score/score_thresholds_test.cpp
+  core/score/score_marks_test.cpp
+  core/score/score_coverage_test.cpp
+  core/score/score_session_test.cpp
+  core/score/score_pattern_test.cpp
 )
 target_link_libraries(score_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(score_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -17,7 +17,9 @@ gtest_discover_tests(score_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 # Scoring throughput on a synthetic 5-minute 1 kHz session.
 if(PALPA_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
-  add_executable(score_bench bench/score_bench.cpp)
+  add_executable(score_bench
+    bench/score_bench.cpp
+  )
   target_link_libraries(score_bench PRIVATE palpa_core benchmark::benchmark)
   target_compile_definitions(score_bench PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   palpa_warnings(score_bench)

@@ -1,7 +1,9 @@
 # Tests of the application window (QtTest), run under Xvfb with Mesa's software OpenGL
 # (included by tests/CMakeLists.txt when PALPA_BUILD_GUI is on).
 find_program(PALPA_XVFB_RUN xvfb-run REQUIRED)
-add_executable(ui_tests ui/trainee_window_test.cpp)
+add_executable(ui_tests
+  ui/trainee_window_test.cpp
+)
 set_target_properties(ui_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
@@ -21,7 +23,9 @@ endif()
 
 # Acceptance: palpation through the window's own input events, checked against fresh
 # presses, and a mouse trainee that must pass the default case (long form: PALPA_LONG_TESTS=1).
-add_executable(ui_acceptance_tests ui/palpation_acceptance_test.cpp)
+add_executable(ui_acceptance_tests
+  ui/palpation_acceptance_test.cpp
+)
 set_target_properties(ui_acceptance_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_acceptance_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_acceptance_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -42,7 +46,9 @@ else()
 endif()
 
 # Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).
-add_executable(ui_review_tests ui/review_window_test.cpp)
+add_executable(ui_review_tests
+  ui/review_window_test.cpp
+)
 set_target_properties(ui_review_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_review_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_review_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"

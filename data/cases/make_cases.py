@@ -129,7 +129,7 @@ def make_default():
         # (about on the skeleton). A light press (a fifth of the thickness) feels it at most
         # about 1.15 times firmer, less than a finger tells apart; a press to half the
         # thickness more than 1.2 times (docs/user-guide.md, "Cases in kPa";
-        # tests/core/exercise_placement_test.cpp).
+        # tests/core/scripted/scripted_placement_test.cpp).
         "placement": {"u": [0.3, 0.7], "v": [0.3, 0.7], "depth": [0.4, 0.5]},
     }
     check_tumor_inside(b, tumor)

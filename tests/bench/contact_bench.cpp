@@ -12,7 +12,7 @@
 
 namespace {
 
-using palpa::contact::Vec3;
+using palpa::Vec3;
 
 const palpa::scene::Scene& default_scene() {
   static const auto scene =

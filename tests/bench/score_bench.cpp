@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../core/score_fixture.hpp"
+#include "../core/score/score_fixture.hpp"
 #include "palpa/score/score.hpp"
 
 namespace {

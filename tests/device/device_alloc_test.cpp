@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "../core/counting_allocator.hpp"
+#include "../core/support/counting_allocator.hpp"
 #include "fake_transports.hpp"
 #include "palpa/device/falcon_device.hpp"
 #include "palpa/device/replay_device.hpp"
@@ -16,7 +16,6 @@
 namespace palpa::device {
 namespace {
 
-using engine::Vec3;
 
 TEST(DeviceRealTime, SpaceMouseReadAndWriteAllocateNothingInEitherMode) {
   for (const auto mode : {SpaceMouseMode::Position, SpaceMouseMode::Rate}) {

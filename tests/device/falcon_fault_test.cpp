@@ -24,14 +24,13 @@ namespace palpa::device {
 namespace {
 
 using engine::DeviceStatus;
-using engine::Vec3;
 using test::FakeFalcon;
 using Torque = std::array<std::int16_t, 3>;
 const Torque kZero{0, 0, 0};
 const std::string kId = "falcon:1-1";
 
 // Whole encoder counts of a grip position (device frame).
-std::array<std::int16_t, 3> counts_at(const falcon::Vec3& grip) {
+std::array<std::int16_t, 3> counts_at(const palpa::Vec3& grip) {
   const auto angles = falcon::Kinematics().inverse(grip);
   std::array<std::int16_t, 3> counts{};
   const double per_count = falcon::encoder_to_angle(1) - falcon::encoder_to_angle(0);
@@ -70,7 +69,7 @@ void home(RunningFalcon& r) {
 // Thighs at 144, -74 and 144 degrees: no arm reaches that (checked in the test).
 const std::array<std::int16_t, 3> kImpossible{3000, -3000, 3000};
 
-bool forward_fails(const std::array<std::int16_t, 3>& counts, const falcon::Vec3& guess) {
+bool forward_fails(const std::array<std::int16_t, 3>& counts, const palpa::Vec3& guess) {
   const falcon::Angles a(falcon::encoder_to_angle(counts[0]), falcon::encoder_to_angle(counts[1]),
                          falcon::encoder_to_angle(counts[2]));
   return !falcon::Kinematics().forward(a, guess).has_value();
@@ -174,7 +173,7 @@ TEST(FalconFault, HomingHoldsTheCentreAndBadReadingsHoldTheLastPositionUntilARun
     ASSERT_EQ(device.read(0.001 * k, pose), DeviceStatus::Ok) << k;
     EXPECT_EQ(pose.position, centre);
   }
-  const falcon::Vec3 grip = falcon::Kinematics::workspace_center() + falcon::Vec3(0.01, 0.0, 0.0);
+  const palpa::Vec3 grip = falcon::Kinematics::workspace_center() + palpa::Vec3(0.01, 0.0, 0.0);
   r.fake->encoder = counts_at(grip);
   home(r);
   ASSERT_EQ(device.read(0.1, pose), DeviceStatus::Ok);

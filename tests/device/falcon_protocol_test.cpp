@@ -231,7 +231,7 @@ BootedFalcon booted(FalconOptions options = {}) {
 TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
   auto b = booted();
   auto& device = *b.device;
-  device.place_workspace(engine::Vec3(0.5, 0.5, 0.5), 1.0);
+  device.place_workspace(palpa::Vec3(0.5, 0.5, 0.5), 1.0);
   // Encoders for a grip 1 cm right, 2 cm up and 1 cm toward the user of the workspace centre.
   const Kinematics kin;
   const Vec3 grip = Kinematics::workspace_center() + Vec3(0.01, 0.02, 0.01);
@@ -245,7 +245,7 @@ TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
   }
   b.fake->buttons = 0x05;
   // Homing: three exchanges in homing mode (red LED), no torque asked for.
-  device.write_force(engine::Vec3(0, 0, 5));
+  device.write_force(palpa::Vec3(0, 0, 5));
   for (int k = 0; k < 3; ++k) {
     EXPECT_FALSE(device.homed());
     ASSERT_TRUE(device.exchange());
@@ -260,13 +260,13 @@ TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
                        encoder_to_angle(b.fake->encoder[2]));
   const Vec3 expected_device = *kin.forward(counted, Kinematics::workspace_center());
   EXPECT_LT((expected_device - grip).norm(), 2e-4);  // an encoder count is ~0.1 mm at the grip
-  const engine::Vec3 d = expected_device - Kinematics::workspace_center();
+  const palpa::Vec3 d = expected_device - Kinematics::workspace_center();
   // Scene: x right, y away from the user (the device's -z), z up (the device's y).
-  EXPECT_NEAR((pose.position - engine::Vec3(0.5 + d.x(), 0.5 - d.z(), 0.5 + d.y())).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((pose.position - palpa::Vec3(0.5 + d.x(), 0.5 - d.z(), 0.5 + d.y())).norm(), 0.0, 1e-12);
   EXPECT_EQ(pose.buttons, 0x05u);
 
   // 2 N up in the scene is 2 N along the device's y: torques J^T F, in firmware units.
-  ASSERT_EQ(device.write_force(engine::Vec3(0, 0, 2)), engine::DeviceStatus::Ok);
+  ASSERT_EQ(device.write_force(palpa::Vec3(0, 0, 2)), engine::DeviceStatus::Ok);
   const Vec3 tau = *kin.torques(expected_device, Vec3(0, 2, 0));
   ASSERT_TRUE(device.exchange());
   EXPECT_EQ(b.fake->last_packet[13], 0x02 + 0x41) << "the green LED (0x02), homing mode off";
@@ -276,7 +276,7 @@ TEST(FalconDevice, HomesFirstThenReadsEncodersAsAPositionAndSendsTorques) {
   EXPECT_EQ(device.commanded_torque(), b.fake->last_command.value);
   // 80 N is cut to the Falcon's 8 N; across the axis that needs more than the firmware's
   // 4096 on one motor, so all three are scaled by the same factor: the direction is kept.
-  device.write_force(engine::Vec3(0, 0, 80));
+  device.write_force(palpa::Vec3(0, 0, 80));
   const Vec3 units8 = -10000.0 * *kin.torques(expected_device, Vec3(0, 8, 0));
   ASSERT_GT(units8.cwiseAbs().maxCoeff(), kMaxTorqueUnits);
   const Vec3 scaled = units8 * (kMaxTorqueUnits / units8.cwiseAbs().maxCoeff());
@@ -294,7 +294,7 @@ TEST(FalconDevice, UnpluggingIsDisconnectedAndAFailingLinkIsAnError) {
     EXPECT_FALSE(b.device->exchange());
     engine::DevicePose pose;
     EXPECT_EQ(b.device->read(0.0, pose), engine::DeviceStatus::Disconnected);
-    EXPECT_EQ(b.device->write_force(engine::Vec3(0, 0, 1)), engine::DeviceStatus::Disconnected);
+    EXPECT_EQ(b.device->write_force(palpa::Vec3(0, 0, 1)), engine::DeviceStatus::Disconnected);
     EXPECT_EQ(b.device->fault_message(), "Novint Falcon (falcon:1-4): unplugged");
   }
   {

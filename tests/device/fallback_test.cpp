@@ -13,13 +13,12 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/session/session_reader.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "unplug_devices.hpp"
 
 namespace palpa::device {
 namespace {
 
-using engine::Vec3;
 const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
 
 // 12 mm into the default case's body, over its tumour (as the engine tests press).
@@ -107,7 +106,7 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-bool run_until(trainer::LiveExercise& live, const std::function<bool()>& done, double seconds = 10.0) {
+bool run_until(live::LiveExercise& live, const std::function<bool()>& done, double seconds = 10.0) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   while (std::chrono::steady_clock::now() < deadline) {
     live.update();
@@ -119,14 +118,14 @@ bool run_until(trainer::LiveExercise& live, const std::function<bool()>& done, d
 
 TEST(LiveExerciseUnplug, TheSessionGoesOnWithTheMouseAndReadsBackComplete) {
   ScratchDir dir;
-  trainer::LiveOptions o;
+  live::LiveOptions o;
   o.trainee = "t1";
   o.seed = 7;
   o.session_path = dir / "unplug.palpa";
   o.realtime.request_fifo = false;
   auto primary = std::make_shared<test::UnpluggedAt>(Vec3::Zero(), 0.3);
   o.device = primary;
-  trainer::LiveExercise live(io::load_case(kDefaultCase), kDefaultCase, o);
+  live::LiveExercise live(io::load_case(kDefaultCase), kDefaultCase, o);
   // Placed over the first body: the middle of its rest box, at its top.
   const auto& bounds = live.scene().body(0).bounds;
   EXPECT_NEAR(primary->placed_.z(), bounds.hi.z(), 1e-12);

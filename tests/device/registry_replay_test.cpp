@@ -131,12 +131,12 @@ TEST(ReplayDevice, PlaysThePathAtTheRecordedTimesThenEnds) {
   EXPECT_NEAR(replay.duration(), 0.004, 1e-12);
   engine::DevicePose pose;
   ASSERT_EQ(replay.read(0.0, pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.0, 0.02, 0.03));
+  EXPECT_EQ(pose.position, palpa::Vec3(0.0, 0.02, 0.03));
   ASSERT_EQ(replay.read(0.0015, pose), engine::DeviceStatus::Ok);  // the sample standing at t
-  EXPECT_EQ(pose.position, engine::Vec3(0.01, 0.02, 0.03));
+  EXPECT_EQ(pose.position, palpa::Vec3(0.01, 0.02, 0.03));
   EXPECT_EQ(pose.buttons, 1u);
   ASSERT_EQ(replay.read(0.0031, pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.02, 0.02, 0.03));  // the fault tick keeps the last good position
+  EXPECT_EQ(pose.position, palpa::Vec3(0.02, 0.02, 0.03));  // the fault tick keeps the last good position
   EXPECT_TRUE(replay.fault_message().empty());
   EXPECT_EQ(replay.read(0.0039, pose), engine::DeviceStatus::Ok);
   EXPECT_EQ(pose.buttons, 3u);
@@ -145,7 +145,7 @@ TEST(ReplayDevice, PlaysThePathAtTheRecordedTimesThenEnds) {
   EXPECT_EQ(replay.fault_message(), "replay:old.palpa: the replay ended");
   // Jumping back (a restarted engine) finds its place again.
   ASSERT_EQ(replay.read(0.001, pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.01, 0.02, 0.03));
+  EXPECT_EQ(pose.position, palpa::Vec3(0.01, 0.02, 0.03));
   EXPECT_THROW(ReplayDevice(session::Session{}, "empty.palpa"), DeviceError);
 }
 
@@ -164,9 +164,9 @@ TEST(ReplayDevice, TheLastTickPlaysDespiteRounding) {
   ReplayDevice replay(s, "rounded.palpa");
   engine::DevicePose pose;
   ASSERT_EQ(replay.read(4 / 1000.0, pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.04, 0.0, 0.0));
+  EXPECT_EQ(pose.position, palpa::Vec3(0.04, 0.0, 0.0));
   ASSERT_EQ(replay.read(replay.duration(), pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.04, 0.0, 0.0));
+  EXPECT_EQ(pose.position, palpa::Vec3(0.04, 0.0, 0.0));
   EXPECT_TRUE(replay.fault_message().empty());
   EXPECT_EQ(replay.read(5 / 1000.0, pose), engine::DeviceStatus::Disconnected);
   // One sample: it plays at t = 0 and ends after.

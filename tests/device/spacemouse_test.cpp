@@ -97,7 +97,7 @@ std::unique_ptr<SpaceMouseDevice> make(std::vector<Bytes> reports, const SpaceMo
                                        bool unplug_at_end = false) {
   auto device = std::make_unique<SpaceMouseDevice>(std::make_unique<test::FakeHid>(std::move(reports), unplug_at_end),
                                                    ReportLayout::Split, "SpaceNavigator", options);
-  device->place_workspace(engine::Vec3(0.1, 0.2, 0.3), 1.0);
+  device->place_workspace(palpa::Vec3(0.1, 0.2, 0.3), 1.0);
   return device;
 }
 
@@ -111,7 +111,7 @@ TEST(SpaceMouseDevice, PositionControlMapsTheDeflectionPastTheDeadZoneIntoTheWor
   auto device = make({{0x01, 0xC8, 0x00, 0x1E, 0x00, 0x5E, 0x01}, {0x03, 0x02}}, options);
   engine::DevicePose pose;
   ASSERT_EQ(device->read(0.0, pose), engine::DeviceStatus::Ok);
-  EXPECT_EQ(pose.position, engine::Vec3(0.1, 0.2, 0.3));  // nothing read yet: the centre
+  EXPECT_EQ(pose.position, palpa::Vec3(0.1, 0.2, 0.3));  // nothing read yet: the centre
   ASSERT_TRUE(device->poll(0));
   ASSERT_TRUE(device->poll(0));
   ASSERT_EQ(device->read(0.001, pose), engine::DeviceStatus::Ok);
@@ -120,8 +120,8 @@ TEST(SpaceMouseDevice, PositionControlMapsTheDeflectionPastTheDeadZoneIntoTheWor
   EXPECT_NEAR(pose.position.z(), 0.3 - 0.06, 1e-15);  // pushing the cap down lowers the probe
   EXPECT_EQ(pose.buttons, 0x2u);
   EXPECT_FALSE(device->capabilities().force_output);
-  EXPECT_EQ(device->write_force(engine::Vec3(0, 0, 2.5)), engine::DeviceStatus::Ok);
-  EXPECT_EQ(device->last_force(), engine::Vec3(0, 0, 2.5));  // shown, not felt
+  EXPECT_EQ(device->write_force(palpa::Vec3(0, 0, 2.5)), engine::DeviceStatus::Ok);
+  EXPECT_EQ(device->last_force(), palpa::Vec3(0, 0, 2.5));  // shown, not felt
 }
 
 TEST(SpaceMouseDevice, RateControlIntegratesAVelocityAndStaysInTheWorkspace) {
@@ -169,7 +169,7 @@ TEST(SpaceMouseDevice, TheIoThreadDeliversReportsAndStops) {
     auto device = make({{0x01, 0x5E, 0x01, 0x00, 0x00, 0x00, 0x00}}, options);
     engine::DevicePose pose;
     ASSERT_EQ(device->read(0.0, pose), engine::DeviceStatus::Ok);
-    ASSERT_EQ(pose.position, engine::Vec3(0.1, 0.2, 0.3));  // nothing read yet
+    ASSERT_EQ(pose.position, palpa::Vec3(0.1, 0.2, 0.3));  // nothing read yet
     device->start();
     for (int k = 0; k < 10000 && pose.position.x() == 0.1; ++k) {
       ASSERT_EQ(device->read(0.0, pose), engine::DeviceStatus::Ok);

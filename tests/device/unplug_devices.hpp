@@ -10,7 +10,7 @@ namespace palpa::device::test {
 
 class UnpluggedAt final : public engine::Device {
  public:
-  UnpluggedAt(engine::Vec3 position, double unplug_at) : position_(position), unplug_at_(unplug_at) {
+  UnpluggedAt(palpa::Vec3 position, double unplug_at) : position_(position), unplug_at_(unplug_at) {
     caps_.name = "test SpaceMouse";
     caps_.max_force = 30.0;
   }
@@ -24,18 +24,18 @@ class UnpluggedAt final : public engine::Device {
     pose.buttons = 0;
     return engine::DeviceStatus::Ok;
   }
-  engine::DeviceStatus write_force(const engine::Vec3& force) noexcept override {
+  engine::DeviceStatus write_force(const palpa::Vec3& force) noexcept override {
     last_force_ = force;
     return gone_.load() ? engine::DeviceStatus::Disconnected : engine::DeviceStatus::Ok;
   }
-  void place_workspace(const engine::Vec3& center, double /*scale*/) override { placed_ = center; }
+  void place_workspace(const palpa::Vec3& center, double /*scale*/) override { placed_ = center; }
   std::string fault_message() const override { return gone_.load() ? "test SpaceMouse: cable pulled" : ""; }
-  engine::Vec3 last_force_ = engine::Vec3::Zero();
-  engine::Vec3 placed_ = engine::Vec3::Zero();
+  palpa::Vec3 last_force_ = palpa::Vec3::Zero();
+  palpa::Vec3 placed_ = palpa::Vec3::Zero();
 
  private:
   engine::DeviceCapabilities caps_;
-  engine::Vec3 position_;
+  palpa::Vec3 position_;
   double unplug_at_;
   std::atomic<bool> gone_{false};
 };

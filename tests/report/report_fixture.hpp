@@ -25,7 +25,7 @@ inline score::Score synthetic_score() {
   s.duration_s = 183.25;
   s.contact_time_s = 120.5;
   s.peak_force_n = 7.25;
-  s.pattern.kind = "sporadic";
+  s.pattern.kind = score::PatternKind::Sporadic;
   s.pressure = {40.0, 50.0, 30.5};
   s.samples = 183250;
   s.gates = {{"sensitivity", false, 0.5, 1.0, "You found 1 of 2 tumours."},

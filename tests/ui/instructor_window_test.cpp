@@ -149,10 +149,10 @@ class FakeProbe final : public palpa::engine::Device {
   }
   const palpa::engine::DeviceCapabilities& capabilities() const override { return caps_; }
   palpa::engine::DeviceStatus read(double, palpa::engine::DevicePose& pose) noexcept override {
-    pose.position = palpa::engine::Vec3(0.0, 0.0, 0.1);
+    pose.position = palpa::Vec3(0.0, 0.0, 0.1);
     return palpa::engine::DeviceStatus::Ok;
   }
-  palpa::engine::DeviceStatus write_force(const palpa::engine::Vec3&) noexcept override {
+  palpa::engine::DeviceStatus write_force(const palpa::Vec3&) noexcept override {
     return palpa::engine::DeviceStatus::Ok;
   }
 
@@ -222,7 +222,7 @@ class InstructorWindowTest : public QObject {
     window.tumour_panel()->depth_box()->setValue(12.0);
     window.tumour_panel()->radius_box()->setValue(4.0);
     const double top = 0.03;
-    const QPoint at = window.to_view(palpa::render::Vec3(0.0, 0.0, top));
+    const QPoint at = window.to_view(palpa::Vec3(0.0, 0.0, top));
     QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, at);
     QCOMPARE(window.draft().tumour_count(), std::size_t{1});
     const auto t = *window.draft().tumour(0);
@@ -266,7 +266,7 @@ class InstructorWindowTest : public QObject {
     window.tumour_panel()->depth_box()->setValue(8.0);
     window.tumour_panel()->radius_box()->setValue(2.5);
     window.tumour_panel()->stiffness_box()->setValue(1500.0);
-    QVERIFY(window.click_at(window.to_view(palpa::render::Vec3(0.0, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
     window.tumour_panel()->randomize_box()->setChecked(true);
     window.tumour_panel()->rule_box(4)->setValue(0.45);  // depth fraction from 0.45
     QVERIFY(window.draft().placement(0).has_value());
@@ -446,7 +446,7 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(tissue->currentData().toString(), QString("carcinoma"));
     QCOMPARE(stiffening->value(), 11.07);
 
-    const QPoint at = window.to_view(palpa::render::Vec3(0.0, 0.0, 0.03));
+    const QPoint at = window.to_view(palpa::Vec3(0.0, 0.0, 0.03));
     QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, at);
     QCOMPARE(window.draft().tumour_count(), std::size_t{1});
     const auto& t = window.draft().document()["tumors"][0];
@@ -580,7 +580,7 @@ class InstructorWindowTest : public QObject {
     InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
     window.set_sessions_dir(dir.filePath("sessions").toStdString());
     show(window);
-    QVERIFY(window.click_at(window.to_view(palpa::render::Vec3(0.01, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.01, 0.0, 0.03))));
     auto* trainee = window.try_it();
     QVERIFY2(trainee != nullptr, qPrintable(window.message()));
     QVERIFY(QTest::qWaitForWindowExposed(trainee));
@@ -683,7 +683,7 @@ class InstructorWindowTest : public QObject {
   void undoKeysReachTheCaseFromSidePanelEditors() {
     InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
     show(window);
-    QVERIFY(window.click_at(window.to_view(palpa::render::Vec3(0.0, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
     QApplication::setActiveWindow(&window);
     auto* depth = window.tumour_panel()->depth_box();
     depth->setFocus();
@@ -748,7 +748,7 @@ class InstructorWindowTest : public QObject {
     InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
     window.set_sessions_dir(sessions.toStdString());
     show(window);
-    QVERIFY(window.click_at(window.to_view(palpa::render::Vec3(0.01, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.01, 0.0, 0.03))));
     int opened = 0;
     window.set_device_opener([&opened] {
       ++opened;
@@ -778,7 +778,7 @@ class InstructorWindowTest : public QObject {
     auto window = std::make_unique<InstructorWindow>(palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab)));
     window->set_sessions_dir(dir.filePath("sessions").toStdString());
     show(*window);
-    QVERIFY(window->click_at(window->to_view(palpa::render::Vec3(0.0, 0.0, 0.03))));
+    QVERIFY(window->click_at(window->to_view(palpa::Vec3(0.0, 0.0, 0.03))));
     QVERIFY(window->save_as(dir.filePath("tried.json")));  // clean: closing asks nothing
     auto* trainee = window->try_it();
     QVERIFY2(trainee != nullptr, qPrintable(window->message()));

@@ -40,7 +40,7 @@
 #include "palpa/engine/engine.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/session/session_reader.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/render/surface_pick.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -48,9 +48,9 @@
 
 namespace {
 
-using palpa::trainer::Vec3;
-using palpa::trainer::PressureDial;
-using palpa::trainer::PressureLevel;
+using palpa::Vec3;
+using palpa::live::PressureDial;
+using palpa::live::PressureLevel;
 
 const std::string kCases = PALPA_SOURCE_DIR "/data/cases/";
 
@@ -58,13 +58,13 @@ bool long_form() { return std::getenv("PALPA_LONG_TESTS") != nullptr; }
 
 std::unique_ptr<palpa::ui::TraineeWindow> open_window(const palpa::io::CaseFile& file, const std::string& name,
                                                       const QString& session, std::uint64_t seed = 11) {
-  palpa::trainer::LiveOptions o;
+  palpa::live::LiveOptions o;
   o.trainee = "mouse-trainee";
   o.seed = seed;
   o.session_path = session.toStdString();
   o.realtime.request_fifo = false;
   auto window = std::make_unique<palpa::ui::TraineeWindow>(
-      std::make_unique<palpa::trainer::LiveExercise>(file, name, o), QString::fromStdString(name));
+      std::make_unique<palpa::live::LiveExercise>(file, name, o), QString::fromStdString(name));
   window->resize(960, 640);  // a laptop's window (and half the pixels llvmpipe draws)
   window->show();
   window->activateWindow();
@@ -89,7 +89,7 @@ class Hand {
  public:
   explicit Hand(palpa::ui::TraineeWindow& w) : w_(w) {}
 
-  palpa::trainer::LiveExercise& live() { return w_.exercise(); }
+  palpa::live::LiveExercise& live() { return w_.exercise(); }
   double now() const { return w_.exercise().snapshot().t; }
 
   /// The top contour's point over plan position (x, y), if the body is there.
@@ -181,7 +181,7 @@ double fresh_press(const palpa::scene::Scene& scene, int body, double u, double 
   palpa::contact::FootPoint foot;
   std::array<double, 7> sk{};
   sb.body.skeleton().evaluate(u, v, sk);
-  const auto frame = palpa::trainer::surface_frame(sb.body, u, v);
+  const auto frame = palpa::live::surface_frame(sb.body, u, v);
   const Vec3 q = frame.top - share * frame.thickness * frame.normal;
   auto state = scene.make_state();
   return scene.probe(q, state, {}).force.total.norm();
@@ -250,11 +250,11 @@ Findings check_session(const palpa::session::Session& s, const palpa::scene::Sce
                  .arg(force).arg(sample.t).arg(share * 100).arg(reference).arg(sample.depth * 1e3)
                  .arg(sample.position[0] * 1e3).arg(sample.position[1] * 1e3).arg(sample.position[2] * 1e3));
     }
-    const auto frame = palpa::trainer::surface_frame(scene.body(static_cast<std::size_t>(sample.body)).body, sample.u, sample.v);
+    const auto frame = palpa::live::surface_frame(scene.body(static_cast<std::size_t>(sample.body)).body, sample.u, sample.v);
     if (steady && on_body && !sample.fault && frame.thickness > 4e-3) {
       const double fraction = sample.depth / frame.thickness;
-      const auto chosen = palpa::trainer::level_of(steps[at].share, th);
-      if (palpa::trainer::level_of(fraction, th) != chosen && std::abs(fraction - steps[at].share) > 0.05) {
+      const auto chosen = palpa::live::level_of(steps[at].share, th);
+      if (palpa::live::level_of(fraction, th) != chosen && std::abs(fraction - steps[at].share) > 0.05) {
         ++f.off_band;
         f.note('b', QString("depth %1 % at t = %2 s, chosen %3 %").arg(fraction * 100).arg(sample.t).arg(steps[at].share * 100));
       }
@@ -294,7 +294,7 @@ double dent_offset(palpa::ui::TraineeWindow& w) {
   }
   if (deepest < 1e-3) return 0.0;  // no dent to speak of
   const Vec3 finger(shot.probe[0], shot.probe[1], shot.probe[2]);
-  const Vec3 n = palpa::trainer::surface_frame(body, shot.u, shot.v).normal;
+  const Vec3 n = palpa::live::surface_frame(body, shot.u, shot.v).normal;
   const Vec3 d = at - finger;
   return (d - d.dot(n) * n).norm();
 }
@@ -365,7 +365,7 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
     hand.point_at(x0 + kEdge, y0);
     hand.wait(0.6);
     hand.set_level(level);
-    const bool deep = palpa::trainer::PressureDial(w.exercise().thresholds(), level).level() == PressureLevel::Deep;
+    const bool deep = palpa::live::PressureDial(w.exercise().thresholds(), level).level() == PressureLevel::Deep;
     bool up = true;
     for (int strip = 0; strip < strips; ++strip) {
       const double x = x0 + kEdge + strip * (x1 - x0 - 2.0 * kEdge) / (strips - 1);
@@ -464,7 +464,7 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
       if (f > most) most = f, peak = &x;
     }
     if (peak) {
-      const auto frame = palpa::trainer::surface_frame(w.exercise().scene().body(0).body, peak->u, peak->v);
+      const auto frame = palpa::live::surface_frame(w.exercise().scene().body(0).body, peak->u, peak->v);
       double share = 0.0;
       for (const auto& st : hand.steps()) if (st.t <= peak->t) share = st.share;
       qInfo("  peak %.1f N at t = %.2f s at (%.1f, %.1f) mm, depth %.0f %% of %.0f mm, chosen %.0f %%", most, peak->t,

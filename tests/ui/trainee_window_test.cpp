@@ -27,7 +27,7 @@
 #include <vtkPolyData.h>
 
 #include "palpa/io/case_file.hpp"
-#include "palpa/trainer/live_exercise.hpp"
+#include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -38,14 +38,14 @@ namespace {
 
 const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
 
-std::unique_ptr<palpa::trainer::LiveExercise> make_exercise(const QString& session) {
-  palpa::trainer::LiveOptions o;
+std::unique_ptr<palpa::live::LiveExercise> make_exercise(const QString& session) {
+  palpa::live::LiveOptions o;
   o.trainee = "ui-test";
   o.seed = 11;
   o.session_path = session.toStdString();
   o.realtime.request_fifo = false;
   o.device_settling = 0.01;
-  return std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o);
+  return std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o);
 }
 
 /// Lets the event loop (and the haptic thread) run until `done` or a generous deadline.
@@ -60,10 +60,10 @@ bool wait_for(const std::function<bool()>& done, int ms = 5000) {
 }
 
 /// Screen position over the placed tumour: its centre seen straight from above, on the rest top contour.
-palpa::trainer::Vec3 top_over_tumour(palpa::trainer::LiveExercise& live) {
+palpa::Vec3 top_over_tumour(palpa::live::LiveExercise& live) {
   const auto& t = live.placed_case().tumours.at(0);
-  const palpa::trainer::Vec3 c(t.center[0], t.center[1], t.center[2]);
-  const auto hit = live.pick(c + palpa::trainer::Vec3(0, 0, 0.5), palpa::trainer::Vec3(0, 0, -1));
+  const palpa::Vec3 c(t.center[0], t.center[1], t.center[2]);
+  const auto hit = live.pick(c + palpa::Vec3(0, 0, 0.5), palpa::Vec3(0, 0, -1));
   return hit ? hit->point : c;
 }
 
@@ -89,10 +89,10 @@ class UnpluggedProbe final : public palpa::engine::Device {
   }
   const palpa::engine::DeviceCapabilities& capabilities() const override { return caps_; }
   palpa::engine::DeviceStatus read(double, palpa::engine::DevicePose& pose) noexcept override {
-    pose.position = palpa::engine::Vec3(0.0, 0.0, 0.2);
+    pose.position = palpa::Vec3(0.0, 0.0, 0.2);
     return --left_ > 0 ? palpa::engine::DeviceStatus::Ok : palpa::engine::DeviceStatus::Disconnected;
   }
-  palpa::engine::DeviceStatus write_force(const palpa::engine::Vec3&) noexcept override {
+  palpa::engine::DeviceStatus write_force(const palpa::Vec3&) noexcept override {
     return left_ > 0 ? palpa::engine::DeviceStatus::Ok : palpa::engine::DeviceStatus::Disconnected;
   }
   std::string fault_message() const override { return "cable pulled"; }
@@ -184,14 +184,14 @@ class TraineeWindowTest : public QObject {
     const QPoint at = window.to_view(top_over_tumour(window.exercise()));
     QVERIFY(view->rect().contains(at));
     move_pointer(view->input(), at);
-    QCOMPARE(window.pressure().level(), palpa::trainer::PressureLevel::Medium);  // medium 2 of 3 to start
+    QCOMPARE(window.pressure().level(), palpa::live::PressureLevel::Medium);  // medium 2 of 3 to start
     wheel(view->input(), at, 2);  // two notches deeper: deep 1 of 3
-    QCOMPARE(window.pressure().level(), palpa::trainer::PressureLevel::Deep);
+    QCOMPARE(window.pressure().level(), palpa::live::PressureLevel::Deep);
     QCOMPARE(window.pressure().step_in_level(), 1);
     QVERIFY2(window.pressure_text().contains("deep, step 1 of 3"), qPrintable(window.pressure_text()));
     QVERIFY2(wait_for([&] { return window.gauge()->contact().force > 1.0; }),
              qPrintable(window.gauge()->text()));
-    QVERIFY(window.gauge()->contact().level != palpa::trainer::PressureLevel::None);
+    QVERIFY(window.gauge()->contact().level != palpa::live::PressureLevel::None);
     QVERIFY(window.exercise().meshes().version(0) > 0);
     // The drawn surface (the VTK points themselves) sank under the finger by at least 2 mm.
     QVERIFY(wait_for([&] {
@@ -239,13 +239,13 @@ class TraineeWindowTest : public QObject {
     // Two bodies side by side (x < -0.02 m and x > 0.02 m): with the camera close on the
     // left one, the right one is neither re-tessellated nor drawn; back in view, it is again.
     QTemporaryDir dir;
-    palpa::trainer::LiveOptions o;
+    palpa::live::LiveOptions o;
     o.trainee = "ui-test";
     o.session_path = dir.filePath("cull.palpa").toStdString();
     o.realtime.request_fifo = false;
     const std::string two = PALPA_SOURCE_DIR "/data/cases/two-bodies.json";
     palpa::ui::TraineeWindow window(
-        std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(two), two, o), "two-bodies.json");
+        std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(two), two, o), "two-bodies.json");
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     window.frame();
@@ -266,14 +266,14 @@ class TraineeWindowTest : public QObject {
 
   void unpluggedDeviceFallsBackToTheMouseAndSaysSo() {
     QTemporaryDir dir;
-    palpa::trainer::LiveOptions o;
+    palpa::live::LiveOptions o;
     o.trainee = "ui-test";
     o.seed = 11;
     o.session_path = dir.filePath("unplug.palpa").toStdString();
     o.realtime.request_fifo = false;
     o.device = std::make_shared<UnpluggedProbe>(300);  // unplugged after ~0.3 s
     palpa::ui::TraineeWindow window(
-        std::make_unique<palpa::trainer::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o),
+        std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o),
         "default.json");
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Builds the seed corpora of the fuzz targets (fuzz/corpus/NAME/) from the repository's
 own data, and adds the hostile inputs that once cost seconds and gigabytes (their
-regression tests with limits: tests/cli/test_hostile_sessions.py, session_corrupt_test.cpp).
+regression tests with limits: tests/cli/test_hostile_sessions.py, tests/core/session/session_corrupt_test.cpp).
 
     /usr/bin/python3 tools/fuzz/make_corpora.py [--repo REPO]
 

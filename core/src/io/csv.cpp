@@ -5,6 +5,8 @@
 #include <fstream>
 #include <istream>
 
+#include <fmt/format.h>
+
 namespace palpa::io {
 namespace {
 
@@ -41,7 +43,7 @@ NumericTable read_numeric_csv(const std::filesystem::path& path, const std::vect
                                                                    : ": cannot open (no such file)"));
   }
   if (std::filesystem::file_size(path, fs_error) > kMaxCsvBytes) {
-    throw CsvError(name + ": larger than " + std::to_string(kMaxCsvBytes >> 20) + " MiB");
+    throw CsvError(fmt::format("{}: larger than {} MiB", name, kMaxCsvBytes >> 20));
   }
   std::ifstream in(path);
   if (!in) throw CsvError(name + ": cannot open (not readable)");
@@ -61,23 +63,23 @@ NumericTable parse_numeric_csv(std::istream& in, const std::string& name, const 
     const auto fields = split(line);
     if (!have_header) {
       if (fields != header) {
-        throw CsvError(name + ": line " + std::to_string(number) + ": header must be \"" + joined(header) +
-                       "\", got \"" + line + "\"");
+        throw CsvError(
+            fmt::format("{}: line {}: header must be \"{}\", got \"{}\"", name, number, joined(header), line));
       }
       have_header = true;
       continue;
     }
     if (fields.size() != header.size()) {
-      throw CsvError(name + ": line " + std::to_string(number) + ": expected " + std::to_string(header.size()) +
-                     " values, got " + std::to_string(fields.size()));
+      throw CsvError(
+          fmt::format("{}: line {}: expected {} values, got {}", name, number, header.size(), fields.size()));
     }
     std::vector<double> row(fields.size());
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const auto& f = fields[c];
       const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), row[c]);
       if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(row[c])) {
-        throw CsvError(name + ": line " + std::to_string(number) + ": column " + header[c] + ": \"" + f +
-                       "\" is not a finite number");
+        throw CsvError(
+            fmt::format("{}: line {}: column {}: \"{}\" is not a finite number", name, number, header[c], f));
       }
     }
     table.rows.push_back(std::move(row));

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <system_error>
 
+#include <fmt/format.h>
+
 namespace palpa::io {
 namespace {
 
@@ -19,7 +21,7 @@ std::string position(std::string_view text, std::size_t offset) {
       ++column;
     }
   }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+  return fmt::format("line {}, column {}", line, column);
 }
 
 // A look at the text's structure before the parser builds anything: how deep arrays and
@@ -44,7 +46,7 @@ std::optional<Problem> scan_structure(std::string_view text, int max_depth, std:
     } else if (c == '[' || c == '{') {
       ++values;
       if (++depth > max_depth) {
-        return Problem{position(text, i), "not accepted: nesting deeper than " + std::to_string(max_depth) + " levels"};
+        return Problem{position(text, i), fmt::format("not accepted: nesting deeper than {} levels", max_depth)};
       }
     } else if (c == ']' || c == '}') {
       --depth;
@@ -52,7 +54,7 @@ std::optional<Problem> scan_structure(std::string_view text, int max_depth, std:
       ++values;
     }
     if (values > max_values) {
-      return Problem{position(text, i), "not accepted: more than " + std::to_string(max_values) + " values"};
+      return Problem{position(text, i), fmt::format("not accepted: more than {} values", max_values)};
     }
   }
   return std::nullopt;
@@ -81,8 +83,7 @@ std::optional<Problem> read_text_file(const std::filesystem::path& path, std::ui
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) return Problem{"file", "cannot read: " + ec.message()};
   if (size > max_bytes) {
-    return Problem{"file", "is " + std::to_string(size) + " bytes, more than the limit of " +
-                               std::to_string(max_bytes)};
+    return Problem{"file", fmt::format("is {} bytes, more than the limit of {}", size, max_bytes)};
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) return Problem{"file", std::string("cannot open: ") + std::strerror(errno)};

@@ -2,7 +2,7 @@
 // Body presets for instructor authoring: a valid case body (docs/case-format.md:
 // rows x cols skeleton grid, radius 0 on the grid boundary, smooth fields) built from a
 // few parameters in SI units. Each preset's defaults and limits are chosen so that every
-// combination within the limits validates and fits (tests/core/author_presets_test.cpp).
+// combination within the limits validates and fits (tests/core/author/author_presets_test.cpp).
 #include <optional>
 #include <string>
 #include <string_view>
