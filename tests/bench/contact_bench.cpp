@@ -103,22 +103,27 @@ void BM_HapticTickWithDynamics(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   palpa::io::CaseFile file = palpa::io::load_case(PALPA_SOURCE_DIR "/data/cases/default.json");
   if (n > 0) {
-    auto& g = file.bodies[0];
-    g.rows = n;
-    g.cols = n;
-    g.medial.clear();
-    g.radius.clear();
-    g.stiffness.clear();
+    // The default case's body reshaped as an n x n dome of the same tissue (its modulus,
+    // the stiffness derived as the case loader derives it).
+    auto doc = palpa::io::to_json(file);
+    auto& body = doc["bodies"][0];
+    const double tissue = body["modulus"][0].get<double>();
+    body["rows"] = n;
+    body["cols"] = n;
+    body["medial"] = nlohmann::json::array();
+    body["radius"] = nlohmann::json::array();
+    body["modulus"] = nlohmann::json::array();
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         const double s = -1.0 + 2.0 * i / (n - 1);
         const double t = -1.0 + 2.0 * j / (n - 1);
         const double f = (1 - s * s) * (1 - t * t);
-        g.medial.push_back({0.07 * s, 0.08 * t, 0.025 * f});
-        g.radius.push_back(0.025 * f);
-        g.stiffness.push_back(120.0 + 180.0 * f);
+        body["medial"].push_back({0.07 * s, 0.08 * t, 0.025 * f});
+        body["radius"].push_back(0.025 * f);
+        body["modulus"].push_back(tissue);
       }
     }
+    file = palpa::io::parse_case(doc.dump(), "bench");
   }
   const auto scene = palpa::scene::Scene::build(file, "bench");
   palpa::deform::DeformedBody drawn(scene.body(0).body);
