@@ -18,6 +18,8 @@
 #include <tuple>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "commands.hpp"
 #include "output_guard.hpp"
 #include "palpa/options/number_checks.hpp"
@@ -116,7 +118,7 @@ std::vector<Input> collect_inputs(const std::vector<std::string>& paths) {
     std::string stem = fs::path(input.file).stem().string();
     if (stem.empty()) stem = "session";
     const int n = ++seen[stem];
-    if (n > 1) stem += "-" + std::to_string(n);
+    if (n > 1) stem = fmt::format("{}-{}", stem, n);
     input.stem = stem;
   }
   return inputs;

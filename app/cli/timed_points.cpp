@@ -1,5 +1,7 @@
 #include "timed_points.hpp"
 
+#include <fmt/format.h>
+
 namespace palpa::cli {
 
 engine::Trajectory timed_points(const io::NumericTable& table, const std::string& name, TimeOrder order) {
@@ -10,8 +12,8 @@ engine::Trajectory timed_points(const io::NumericTable& table, const std::string
     if (row.size() != 4) throw io::CsvError(name + ": expected the columns t,x,y,z");
     const bool back_in_time = !out.t.empty() && (strictly ? row[0] <= out.t.back() : row[0] < out.t.back());
     if (row[0] < 0.0 || back_in_time) {
-      throw io::CsvError(name + ": line " + std::to_string(table.line_numbers[r]) + ": column t: times must " +
-                         (strictly ? "increase" : "not decrease") + " and be >= 0");
+      throw io::CsvError(fmt::format("{}: line {}: column t: times must {} and be >= 0", name, table.line_numbers[r],
+                                     strictly ? "increase" : "not decrease"));
     }
     out.t.push_back(row[0]);
     out.position.emplace_back(row[1], row[2], row[3]);

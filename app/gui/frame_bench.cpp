@@ -180,7 +180,7 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
 }  // namespace
 
 int run_frame_bench(const FrameBenchOptions& options) {
-  const auto dir = std::filesystem::temp_directory_path() / ("palpa-bench-" + std::to_string(::getpid()));
+  const auto dir = std::filesystem::temp_directory_path() / fmt::format("palpa-bench-{}", ::getpid());
   std::filesystem::create_directories(dir);
   std::printf("palpa --bench: trainee window at its default size, haptic loop at 1 kHz, scripted finger pressing into "
               "the bodies, %.1f s per scene and mode\n",
@@ -218,12 +218,11 @@ int run_frame_bench(const FrameBenchOptions& options) {
     out << "bodies,mat_points,dynamics,view,frames,fps_mean,fps_p5,frame_p95_ms,tessellate_ms,upload_ms,render_ms,"
            "bodies_changed_per_frame,bodies_drawn_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks\n";
     for (const auto& r : rows) {
-      char line[400];
-      std::snprintf(line, sizeof line, "%d,%d,%d,%s,%d,%.2f,%.2f,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.3f,%.1f,%llu,%llu",
-                    r.bodies, r.mat_points, r.dynamics ? 1 : 0, r.zoomed ? "one" : "all", r.frames, r.fps_mean, r.fps_p5,
-                    r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed, r.bodies_drawn,
-                    r.cpu_ms, r.haptic_hz, r.missed, r.ticks);
-      out << line << "\n";
+      out << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.1f},{},{}",
+                         r.bodies, r.mat_points, r.dynamics ? 1 : 0, r.zoomed ? "one" : "all", r.frames, r.fps_mean,
+                         r.fps_p5, r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed,
+                         r.bodies_drawn, r.cpu_ms, r.haptic_hz, r.missed, r.ticks)
+          << "\n";
     }
     if (!out) {
       std::fprintf(stderr, "palpa: error: %s: cannot write\n", options.csv->c_str());

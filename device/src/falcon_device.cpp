@@ -6,6 +6,8 @@
 #include <string>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "palpa/device/device_error.hpp"
 
 namespace palpa::device {
@@ -71,12 +73,10 @@ std::string FalconDevice::fault_message() const {
   switch (haptic_fault_.load(std::memory_order_acquire)) {
     case HapticFault::None: break;
     case HapticFault::BadReadings:
-      message = caps_.name;
-      message += " (";
-      message += id_;
-      message += "): the encoders read positions no arm can reach, ";
-      message += std::to_string(options_.bad_readings);
-      message += " times in a row (a loose encoder cable? unplug and plug in again)";
+      message = fmt::format(
+          "{} ({}): the encoders read positions no arm can reach, {} times in a row (a loose encoder cable? unplug "
+          "and plug in again)",
+          caps_.name, id_, options_.bad_readings);
       break;
   }
   return message;

@@ -215,11 +215,10 @@ int boot(UsbTransport& usb, const std::vector<std::uint8_t>& firmware, const std
     why = boot_once(serial, firmware, device_id, options);
     if (why.empty()) return attempt;
   }
-  std::string reason = why;
-  reason += " (";
-  reason += std::to_string(attempts);
-  reason += " attempts; firmware loading is known to be flaky: unplug the Falcon, plug it in again and retry)";
-  throw DeviceError(device_id, "firmware upload", reason);
+  throw DeviceError(device_id, "firmware upload",
+                    fmt::format("{} ({} attempts; firmware loading is known to be flaky: unplug the Falcon, plug it in "
+                                "again and retry)",
+                                why, attempts));
 }
 
 bool firmware_running(UsbTransport& usb, unsigned timeout_ms) {

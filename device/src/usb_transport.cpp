@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <libusb.h>
 
 #include "palpa/device/device_error.hpp"
@@ -43,13 +44,10 @@ UsbStatus status_of(int code) {
 }
 
 std::string port_path_of(libusb_device* device) {
-  std::string path = std::to_string(libusb_get_bus_number(device));
+  std::string path = fmt::format("{}", libusb_get_bus_number(device));
   std::uint8_t ports[8];
   const int n = libusb_get_port_numbers(device, ports, 8);
-  for (int k = 0; k < n; ++k) {
-    path += k == 0 ? '-' : '.';
-    path += std::to_string(ports[k]);
-  }
+  for (int k = 0; k < n; ++k) path += fmt::format("{}{}", k == 0 ? '-' : '.', ports[k]);
   return path;
 }
 

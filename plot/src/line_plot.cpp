@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -220,7 +221,7 @@ std::vector<Tick> log_ticks(const AxisRange& r, double length_px, double spacing
   for (int e = static_cast<int>(std::floor(lo)); e <= static_cast<int>(std::ceil(hi)); ++e) {
     const double decade = std::pow(10.0, e);
     if (e >= first && e <= last) {
-      ticks.push_back({decade, e % every == 0 ? "1e" + std::to_string(e) : std::string()});
+      ticks.push_back({decade, e % every == 0 ? fmt::format("1e{}", e) : std::string()});
     }
     if (every == 1 && px_per_decade >= 40.0) {
       for (int m = 2; m <= 9; ++m) {
@@ -253,8 +254,8 @@ int widest_label(const std::vector<Tick>& ticks, Font f) {
 
 Layout layout_of(const LinePlot& plot) {
   if (plot.width < kMinWidth || plot.height < kMinHeight) {
-    throw std::invalid_argument("palpa::plot: image size " + std::to_string(plot.width) + " x " +
-                                std::to_string(plot.height) + " is below the minimum 200 x 150");
+    throw std::invalid_argument(
+        fmt::format("palpa::plot: image size {} x {} is below the minimum 200 x 150", plot.width, plot.height));
   }
   check_limits(plot.x, "x");
   check_limits(plot.y, "y");

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "palpa/plot/line_plot.hpp"
 #include "palpa/report/encoding.hpp"
 
@@ -61,11 +63,11 @@ std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum
   std::string csv = "attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal\n";
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
-    csv += std::to_string(i + 1) + ',' + csv_field(a.header.started_at) + ',' + csv_field(a.header.file) + ',' +
-           csv_field(a.header.id) + ',' + number_text(a.score) + ',' + (a.passed ? "1" : "0") + ',' +
-           number_text(a.sensitivity) + ',' + number_text(a.coverage) + ',' + number_text(a.deep_coverage) + ',' +
-           (i < cusum.value.size() ? number_text(cusum.value[i]) : std::string()) + ',' +
-           std::string(i < cusum.signal.size() ? to_string(cusum.signal[i]) : "") + '\n';
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", i + 1, csv_field(a.header.started_at),
+                       csv_field(a.header.file), csv_field(a.header.id), number_text(a.score), a.passed ? "1" : "0",
+                       number_text(a.sensitivity), number_text(a.coverage), number_text(a.deep_coverage),
+                       i < cusum.value.size() ? number_text(cusum.value[i]) : std::string(),
+                       i < cusum.signal.size() ? to_string(cusum.signal[i]) : std::string_view());
   }
   return csv;
 }

@@ -1,7 +1,8 @@
 #include "palpa/report/session_html.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include <fmt/format.h>
 
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
@@ -15,9 +16,7 @@ std::string esc(std::string_view s) { return html_escape(s); }
 /// Fixed decimals for people; "-" when not finite.
 std::string fixed(double v, int decimals) {
   if (!std::isfinite(v)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
+  return fmt::format("{:.{}f}", v, decimals);
 }
 std::string percent(double fraction) { return std::isfinite(fraction) ? fixed(100.0 * fraction, 1) + " %" : "-"; }
 std::string mm(double metres) { return fixed(metres * 1e3, 1) + " mm"; }
@@ -90,9 +89,9 @@ void add_metrics(std::string& html, const score::Score& s) {
   html += "<h2>Metrics</h2>\n<table>\n";
   std::size_t found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
-  row(html, "Sensitivity", percent(s.sensitivity) + " (" + std::to_string(found) + " of " +
-                               std::to_string(s.tumours.size()) + " tumours found)");
-  row(html, "False positives", std::to_string(s.false_positives));
+  row(html, "Sensitivity",
+      fmt::format("{} ({} of {} tumours found)", percent(s.sensitivity), found, s.tumours.size()));
+  row(html, "False positives", fmt::format("{}", s.false_positives));
   const double loc = mean_localization_error_mm(s);
   row(html, "Localization error (mean)", std::isfinite(loc) ? fixed(loc, 1) + " mm" : "-");
   row(html, "Coverage", percent(s.coverage));
@@ -108,7 +107,7 @@ void add_metrics(std::string& html, const score::Score& s) {
                                   fixed(s.pattern.strip_spacing_mm, 1) + " mm, revisits " +
                                   percent(s.pattern.revisit_fraction) + ", efficiency " +
                                   percent(s.pattern.efficiency) + ")");
-  row(html, "Samples", std::to_string(s.samples) + (s.complete ? "" : " (session incomplete)"));
+  row(html, "Samples", fmt::format("{}{}", s.samples, s.complete ? "" : " (session incomplete)"));
   html += "</table>\n";
   if (!s.subscores.empty()) {
     html += "<h2>Sub-scores</h2>\n<table>\n<tr><th>part</th><th>value</th><th>weight</th></tr>\n";
@@ -125,11 +124,12 @@ void add_tumours(std::string& html, const score::Score& s) {
           "<th>found</th><th>by mark</th><th>error</th></tr>\n";
   for (std::size_t i = 0; i < s.tumours.size(); ++i) {
     const auto& t = s.tumours[i];
-    html += "<tr><td>" + std::to_string(i + 1) + "</td><td>" + esc(t.body) + "</td><td>" + position_mm(t.center) +
-            "</td><td class=\"num\">" + mm(2.0 * t.radius) + (t.detectable ? "" : " (below detectable size)") +
-            "</td><td class=\"" + (t.found ? "ok\">yes" : "bad\">no") + "</td><td>" +
-            (t.mark >= 0 ? std::to_string(t.mark) : "-") + "</td><td class=\"num\">" +
-            (t.found ? fixed(t.localization_error_mm, 1) + " mm" : "-") + "</td></tr>\n";
+    html += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}{}</td><td class=\"{}</td><td>{}</td>"
+        "<td class=\"num\">{}</td></tr>\n",
+        i + 1, esc(t.body), position_mm(t.center), mm(2.0 * t.radius), t.detectable ? "" : " (below detectable size)",
+        t.found ? "ok\">yes" : "bad\">no", t.mark >= 0 ? fmt::format("{}", t.mark) : "-",
+        t.found ? fixed(t.localization_error_mm, 1) + " mm" : "-");
   }
   html += "</table>\n";
 
@@ -144,12 +144,11 @@ void add_marks_and_notes(std::string& html, const score::Score& s) {
     html += "<table>\n<tr><th>mark</th><th>time</th><th>position (mm)</th><th>result</th>"
             "<th>nearest tumour</th></tr>\n";
     for (const auto& m : s.marks) {
-      std::string result = m.tumour >= 0 ? "hit tumour " : "false positive";
-      if (m.tumour >= 0) result += std::to_string(m.tumour + 1);
+      std::string result = m.tumour >= 0 ? fmt::format("hit tumour {}", m.tumour + 1) : "false positive";
       if (m.duplicate) result += " (duplicate)";
-      html += "<tr><td>" + std::to_string(m.id) + "</td><td class=\"num\">" + fixed(m.t, 2) + " s</td><td>" +
-              position_mm(m.position) + "</td><td>" + esc(result) + "</td><td class=\"num\">" +
-              fixed(m.nearest_mm, 1) + " mm</td></tr>\n";
+      html += fmt::format(
+          "<tr><td>{}</td><td class=\"num\">{} s</td><td>{}</td><td>{}</td><td class=\"num\">{} mm</td></tr>\n", m.id,
+          fixed(m.t, 2), position_mm(m.position), esc(result), fixed(m.nearest_mm, 1));
     }
     html += "</table>\n";
   }
@@ -166,7 +165,7 @@ void add_thresholds(std::string& html, const score::Score& s) {
   html += "<h2>Thresholds used</h2>\n<table>\n";
   row(html, "A mark hits a tumour within", "its radius + " + mm(th.hit_margin));
   row(html, "Smallest tumour counted for sensitivity", mm(th.detectable_diameter) + " diameter");
-  row(html, "False positives allowed", std::to_string(th.max_false_positives));
+  row(html, "False positives allowed", fmt::format("{}", th.max_false_positives));
   row(html, "Coverage needed (expert)", percent(th.min_coverage) + " (" + percent(th.expert_coverage) + ")");
   row(html, "Deep coverage needed", percent(th.min_deep_coverage));
   row(html, "Finger pad radius", mm(th.pad_radius));

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "palpa/report/encoding.hpp"
 
 namespace palpa::report {
@@ -41,10 +43,7 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
     row += number_text(v);
   };
   auto flag = [&row](bool v) { row += v ? ",1" : ",0"; };
-  auto count = [&row](auto n) {
-    row += ',';
-    row += std::to_string(n);
-  };
+  auto count = [&row](auto n) { row += fmt::format(",{}", n); };
   text(h.file);
   text(h.id);
   text(h.trainee);

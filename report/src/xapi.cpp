@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/summary_csv.hpp"
 #include "palpa/version.hpp"
@@ -12,7 +14,7 @@ namespace palpa::report {
 std::string iso8601_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds <= 0.0) return "PT0S";
   const auto centis = static_cast<long long>(std::llround(seconds * 100.0));
-  std::string text = "PT" + std::to_string(centis / 100);
+  std::string text = fmt::format("PT{}", centis / 100);
   const long long frac = centis % 100;
   if (frac != 0) {
     text += '.';

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <random>
 
+#include <fmt/format.h>
 #include <QCloseEvent>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -113,12 +114,7 @@ TraineeWindow* InstructorWindow::try_it() {
   std::random_device entropy;
   options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
   const std::filesystem::path dir = sessions_dir_.empty() ? ui::sessions_dir() : sessions_dir_;
-  std::string name = "tryout-";
-  name += ui::utc_stamp();
-  name += "-";
-  name += std::to_string(++try_count_);
-  name += ".palpa";
-  options.session_path = dir / name;
+  options.session_path = dir / fmt::format("tryout-{}-{}.palpa", ui::utc_stamp(), ++try_count_);
   if (device_opener_) {
     try {
       options.device = device_opener_();

@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <ctime>
 
+#include <fmt/format.h>
+
 namespace palpa::ui {
 
 std::filesystem::path sessions_dir() {
@@ -26,7 +28,7 @@ std::string utc_stamp() {
 std::filesystem::path new_session_path(const std::filesystem::path& dir, const std::string& prefix) {
   const std::string stem = prefix + "-" + utc_stamp();
   auto path = dir / (stem + ".palpa");
-  for (int k = 2; std::filesystem::exists(path); ++k) path = dir / (stem + "-" + std::to_string(k) + ".palpa");
+  for (int k = 2; std::filesystem::exists(path); ++k) path = dir / fmt::format("{}-{}.palpa", stem, k);
   return path;
 }
 

@@ -35,6 +35,7 @@
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -304,15 +305,15 @@ void TraineeWindow::reveal(const score::Score& score) {
     const palpa::Vec3 p(m.position[0], m.position[1], m.position[2]);
     if (m.tumour >= 0) {
       const auto& t = score.tumours[static_cast<std::size_t>(m.tumour)];
-      renderer_->AddActor(line_actor(p, palpa::Vec3(t.center[0], t.center[1], t.center[2]), 0.2, 0.8, 0.3));
+      renderer_->AddActor(line_actor(p, to_vec3(t.center), 0.2, 0.8, 0.3));
     } else if (!score.tumours.empty()) {
       // A false mark: a red line to the tumour nearest to it.
       const auto nearest = std::min_element(score.tumours.begin(), score.tumours.end(), [&](const auto& a, const auto& b) {
-        return (palpa::Vec3(a.center[0], a.center[1], a.center[2]) - p).norm() <
-               (palpa::Vec3(b.center[0], b.center[1], b.center[2]) - p).norm();
+        return (to_vec3(a.center) - p).norm() <
+               (to_vec3(b.center) - p).norm();
       });
       renderer_->AddActor(
-          line_actor(p, palpa::Vec3(nearest->center[0], nearest->center[1], nearest->center[2]), 0.9, 0.2, 0.2));
+          line_actor(p, to_vec3(nearest->center), 0.9, 0.2, 0.2));
     }
   }
   probe_->VisibilityOff();
@@ -375,7 +376,7 @@ void TraineeWindow::frame() {
     if (s.tick > 0) {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
       const palpa::Vec3 n = picked_ ? picked_->normal : palpa::Vec3::UnitZ();
-      const palpa::Vec3 c = palpa::Vec3(s.probe[0], s.probe[1], s.probe[2]) + kFingertipRadius * n;
+      const palpa::Vec3 c = to_vec3(s.probe) + kFingertipRadius * n;
       if (!probe_->GetVisibility() || (c - drawn_probe_).norm() > kProbeMoveToDraw) request_render();
       probe_->SetPosition(c.x(), c.y(), c.z());
       probe_->VisibilityOn();

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "palpa/io/json_text.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/render/surface_pick.hpp"
@@ -200,7 +202,7 @@ json CaseDraft::body_id(std::size_t b) const {
   const json& doc = doc_;  // const: operator[] must not insert
   if (!doc.is_object() || !doc.contains("bodies") || !doc["bodies"].is_array() || b >= doc["bodies"].size() ||
       !doc["bodies"][b].is_object() || !doc["bodies"][b].contains("id")) {
-    throw std::out_of_range("no body " + std::to_string(b));
+    throw std::out_of_range(fmt::format("no body {}", b));
   }
   return doc["bodies"][b]["id"];
 }
@@ -208,7 +210,7 @@ json CaseDraft::body_id(std::size_t b) const {
 json& CaseDraft::tumour_json(std::size_t k) {
   if (!doc_.is_object() || !doc_.contains("tumors") || !doc_["tumors"].is_array() || k >= doc_["tumors"].size() ||
       !doc_["tumors"][k].is_object()) {
-    throw std::out_of_range("no tumour " + std::to_string(k));
+    throw std::out_of_range(fmt::format("no tumour {}", k));
   }
   return doc_["tumors"][k];
 }
@@ -272,7 +274,7 @@ std::size_t CaseDraft::add_tumour(const SurfacePoint& where, const TumourSpec& s
 
 void CaseDraft::move_tumour(std::size_t k, const SurfacePoint& where) {
   const auto old = spec(k);
-  if (!old) throw std::out_of_range("tumour " + std::to_string(k) + " has no depth to keep");
+  if (!old) throw std::out_of_range(fmt::format("tumour {} has no depth to keep", k));
   const auto n = unit_normal(where.normal);
   const json id = body_id(where.body);
   (void)tumour_json(k);
@@ -289,7 +291,7 @@ void CaseDraft::edit_tumour(std::size_t k, const TumourSpec& spec) {
   // Recomputing the centre from the anchor would round it: only a new depth moves it.
   const bool deeper = !old || old->depth != spec.depth;
   const auto where = deeper ? anchor(k) : std::nullopt;
-  if (deeper && !where) throw std::out_of_range("tumour " + std::to_string(k) + " lies under no surface point");
+  if (deeper && !where) throw std::out_of_range(fmt::format("tumour {} lies under no surface point", k));
   const auto n = deeper ? unit_normal(where->normal) : std::array<double, 3>{};
   begin_edit();
   json& t = tumour_json(k);
@@ -320,15 +322,15 @@ void CaseDraft::set_placement(std::size_t k, const std::optional<scripted::Place
 
 void CaseDraft::apply_modulus_map(std::size_t b, const StiffnessMap& map, double e_min, double e_max) {
   const io::CaseFile file = io::parse_case(doc_.dump(), source());  // throws CaseError
-  if (b >= file.bodies.size()) throw std::out_of_range("no body " + std::to_string(b));
+  if (b >= file.bodies.size()) throw std::out_of_range(fmt::format("no body {}", b));
   mat::BodyGrid grid = file.bodies[b];
   if (grid.modulus.empty()) {
-    throw std::invalid_argument("body " + std::to_string(b + 1) + " gives its tissue in N/m, not as a modulus");
+    throw std::invalid_argument(fmt::format("body {} gives its tissue in N/m, not as a modulus", b + 1));
   }
   try {
     author::apply_modulus_map(grid, map, e_min, e_max);
   } catch (const mat::FitError& e) {
-    throw io::CaseError(source(), {{"/bodies/" + std::to_string(b) + "/modulus", e.what()}});
+    throw io::CaseError(source(), {{fmt::format("/bodies/{}/modulus", b), e.what()}});
   }
   begin_edit();
   doc_["bodies"][b]["modulus"] = grid.modulus;
@@ -336,12 +338,12 @@ void CaseDraft::apply_modulus_map(std::size_t b, const StiffnessMap& map, double
 
 void CaseDraft::apply_stiffness_map(std::size_t b, const StiffnessMap& map, double k_min, double k_max) {
   const io::CaseFile file = io::parse_case(doc_.dump(), source());  // throws CaseError
-  if (b >= file.bodies.size()) throw std::out_of_range("no body " + std::to_string(b));
+  if (b >= file.bodies.size()) throw std::out_of_range(fmt::format("no body {}", b));
   mat::BodyGrid grid = file.bodies[b];
   try {
     author::apply_stiffness_map(grid, map, k_min, k_max);
   } catch (const mat::FitError& e) {
-    throw io::CaseError(source(), {{"/bodies/" + std::to_string(b) + "/stiffness", e.what()}});
+    throw io::CaseError(source(), {{fmt::format("/bodies/{}/stiffness", b), e.what()}});
   }
   begin_edit();
   auto& body = doc_["bodies"][b];

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "palpa/mat/layer_stiffness.hpp"
 
 namespace palpa::author {
@@ -50,29 +52,13 @@ double edge(double s) { return 1.0 - std::pow(s, 6); }
 
 void check(const char* name, double value, const double range[2]) {
   if (!(value >= range[0] && value <= range[1])) {
-    std::string m = name;
-    m += " ";
-    m += std::to_string(value);
-    m += " is outside [";
-    m += std::to_string(range[0]);
-    m += ", ";
-    m += std::to_string(range[1]);
-    m += "]";
-    throw std::invalid_argument(m);
+    throw std::invalid_argument(fmt::format("{} {:f} is outside [{:f}, {:f}]", name, value, range[0], range[1]));
   }
 }
 
 void check_grid(const char* name, int value, const int range[2]) {
   if (value < range[0] || value > range[1]) {
-    std::string m = name;
-    m += " ";
-    m += std::to_string(value);
-    m += " is outside [";
-    m += std::to_string(range[0]);
-    m += ", ";
-    m += std::to_string(range[1]);
-    m += "]";
-    throw std::invalid_argument(m);
+    throw std::invalid_argument(fmt::format("{} {} is outside [{}, {}]", name, value, range[0], range[1]));
   }
 }
 
@@ -229,7 +215,7 @@ io::CaseFile make_modulus_slab(double width, double thickness, double modulus, m
   p.thickness = thickness;
   p.rows = p.cols = 13;
   io::CaseFile file;
-  file.title = "slab of " + std::to_string(modulus / 1000.0) + " kPa";
+  file.title = fmt::format("slab of {:f} kPa", modulus / 1000.0);
   file.bodies.push_back(make_preset_body(p));
   nlohmann::json doc = io::to_json(file);
   auto& body = doc["bodies"][0];

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include "../common/numeric.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::contact {
 namespace {
@@ -53,7 +54,7 @@ struct TumourPlace {
 };
 
 TumourPlace place_of(const mat::Tumour& tumour, const Vec3& foot, const Vec3& outward, double pad_radius) {
-  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - foot;
+  const Vec3 to_center = to_vec3(tumour.center) - foot;
   const double height = to_center.dot(outward);
   const double lateral = (to_center - height * outward).norm();
   double weight = 1.0;
@@ -147,7 +148,7 @@ namespace {
 // q exp((b_t - b) eps). The geometry is the compressed layer's (TumourContrast::compressed).
 double tumour_in_pa(const mat::Tumour& tumour, const Contact& contact, double normal, double strain,
                     double finger_contact_radius, const ForceOptions& options) {
-  const Vec3 to_center = Vec3(tumour.center[0], tumour.center[1], tumour.center[2]) - contact.foot.point;
+  const Vec3 to_center = to_vec3(tumour.center) - contact.foot.point;
   const double height = to_center.dot(contact.outward);
   const double below_skin = contact.radius - height;  // the skin is R above the foot point
   const double lateral = (to_center - height * contact.outward).norm();

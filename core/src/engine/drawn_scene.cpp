@@ -1,4 +1,5 @@
 #include "palpa/engine/drawn_scene.hpp"
+#include "palpa/vec3.hpp"
 
 #include <stdexcept>
 
@@ -14,7 +15,7 @@ contact::Contact contact_of(const Touch& touch) {
   c.depth = touch.sample.depth;
   c.inside = touch.inside;
   c.side = touch.side;
-  c.outward = palpa::Vec3(touch.outward[0], touch.outward[1], touch.outward[2]);
+  c.outward = to_vec3(touch.outward);
   return c;
 }
 

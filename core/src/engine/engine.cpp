@@ -1,4 +1,5 @@
 #include "palpa/engine/engine.hpp"
+#include "palpa/vec3.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +37,7 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   if (status == DeviceStatus::Ok && !pose.position.allFinite()) status = DeviceStatus::Error;  // garbage is a fault
   // On a fault the probe stays where it was last seen (not at the origin): review and the
   // GUI draw it there while the force ramps down.
-  if (status == DeviceStatus::Ok) last_position_ = {pose.position.x(), pose.position.y(), pose.position.z()};
+  if (status == DeviceStatus::Ok) last_position_ = to_array(pose.position);
   s.position = last_position_;
   s.buttons = pose.buttons;
   s.fault = hold_fault || status != DeviceStatus::Ok;
@@ -55,11 +56,11 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
       requested = r.force.total;
       touch_.inside = r.contact.inside;
       touch_.side = static_cast<std::int8_t>(r.contact.side);
-      touch_.outward = {r.contact.outward.x(), r.contact.outward.y(), r.contact.outward.z()};
+      touch_.outward = to_array(r.contact.outward);
     }
   }
   const Vec3 force = governor_.govern(requested, dt, s.fault);
-  s.force = {force.x(), force.y(), force.z()};
+  s.force = to_array(force);
   if (device_->write_force(force) != DeviceStatus::Ok) s.fault = true;
   touch_.sample = s;
   touch_.dynamics = options_.dynamics;

@@ -10,6 +10,7 @@
 #include "palpa/scripted/exercise.hpp"
 #include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/session/session_reader.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::live {
 
@@ -190,7 +191,7 @@ LiveMark LiveExercise::place_mark() {
   LiveMark mark;
   mark.id = next_mark_++;
   mark.t = now();
-  mark.position = Vec3(s.probe[0], s.probe[1], s.probe[2]);
+  mark.position = to_vec3(s.probe);
   session::Event e;
   e.t = mark.t;
   e.kind = session::EventKind::Mark;

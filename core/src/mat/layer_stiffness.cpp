@@ -1,6 +1,7 @@
 #include "palpa/mat/layer_stiffness.hpp"
 
 #include <Eigen/Dense>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -50,10 +51,10 @@ void composite_rule(double a, double b, int panels, Eigen::VectorXd& x, Eigen::V
 
 double bonded_layer_factor(double a_over_h, double nu) {
   if (!(a_over_h >= 0.0 && a_over_h <= 10.0)) {
-    throw std::invalid_argument("bonded_layer_factor: a/h must be in [0, 10], got " + std::to_string(a_over_h));
+    throw std::invalid_argument(fmt::format("bonded_layer_factor: a/h must be in [0, 10], got {:f}", a_over_h));
   }
   if (!(nu >= 0.0 && nu < 0.5)) {
-    throw std::invalid_argument("bonded_layer_factor: Poisson's ratio must be in [0, 0.5), got " + std::to_string(nu));
+    throw std::invalid_argument(fmt::format("bonded_layer_factor: Poisson's ratio must be in [0, 0.5), got {:f}", nu));
   }
   if (a_over_h == 0.0) return 1.0;  // the half-space
   const double lam = a_over_h;

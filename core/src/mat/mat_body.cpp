@@ -5,9 +5,11 @@
 #include <array>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
+
+#include <fmt/format.h>
+
 #include "../common/numeric.hpp"
 
 namespace palpa::mat {
@@ -127,8 +129,7 @@ MatBody MatBody::fit(const BodyGrid& grid, const FitOptions& options) {
         double normal[3] = {0.0, 0.0, 0.0};
         if (!skeleton_normal(skeleton, interpolator.u_params()[idx(i)], interpolator.v_params()[idx(j)], normal) &&
             r != 0.0) {
-          throw FitError("no skeleton normal at grid point (" + std::to_string(i) + ", " + std::to_string(j) +
-                         ") where the radius is not zero");
+          throw FitError(fmt::format("no skeleton normal at grid point ({}, {}) where the radius is not zero", i, j));
         }
         for (std::size_t c = 0; c < 3; ++c) {
           top[k * 3 + c] = grid.medial[k][c] + r * normal[c];
@@ -183,13 +184,11 @@ void check_material_ranges(const spline::BSplineSurface& skeleton, const std::ve
           for (std::size_t c = kRadius; c < kSkeletonChannels; ++c) {
             if (value[c] >= limit[c] && std::isfinite(value[c])) continue;
             if ((c == kDamping && !damping_authored) || (c == kMass && !mass_authored)) continue;
-            char text[320];
-            std::snprintf(text, sizeof text,
-                          "%s falls to %.4g %s between the data sites near grid point (%d, %d) (u = %.4f, v = %.4f): "
-                          "the spline overshoots where neighbouring values jump; smooth the field or space the "
-                          "points further apart",
-                          names[c], value[c], units[c], si * 2 < kSub ? i : i + 1, sj * 2 < kSub ? j : j + 1, u, v);
-            throw FitError(text);
+            throw FitError(fmt::format(
+                "{} falls to {:.4g} {} between the data sites near grid point ({}, {}) (u = {:.4f}, v = {:.4f}): "
+                "the spline overshoots where neighbouring values jump; smooth the field or space the points "
+                "further apart",
+                names[c], value[c], units[c], si * 2 < kSub ? i : i + 1, sj * 2 < kSub ? j : j + 1, u, v));
           }
         }
       }

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include <fmt/format.h>
+
 #include "../common/numeric.hpp"
 
 namespace palpa::render {
@@ -20,8 +23,8 @@ void check_options(const TessellationOptions& o) {
     throw std::invalid_argument("tessellation: the tolerance must be positive and finite");
   }
   if (o.min_segments < 1 || o.max_segments < o.min_segments || o.max_segments > kSegmentLimit) {
-    throw std::invalid_argument("tessellation: segments must satisfy 1 <= min_segments <= max_segments <= " +
-                                std::to_string(kSegmentLimit));
+    throw std::invalid_argument(
+        fmt::format("tessellation: segments must satisfy 1 <= min_segments <= max_segments <= {}", kSegmentLimit));
   }
 }
 

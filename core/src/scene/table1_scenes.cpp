@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace palpa::scene {
 
 const std::vector<Table1Scene>& table1_scenes() {
@@ -20,16 +22,12 @@ const std::vector<Table1Scene>& table1_scenes() {
 // Breast-like domes side by side along x, 12 cm apart.
 io::CaseFile make_table1_case(const Table1Scene& spec) {
   io::CaseFile file;
-  // (appends rather than operator+: GCC 12 misreports -Wrestrict on "literal" + to_string)
-  file.title = "Table 1 scene, ";
-  file.title += std::to_string(spec.bodies);
-  file.title += " bodies";
+  file.title = fmt::format("Table 1 scene, {} bodies", spec.bodies);
   int index = 0;
   for (const auto& [count, rows, cols] : spec.grids) {
     for (int c = 0; c < count; ++c, ++index) {
       mat::BodyGrid g;
-      g.id = "b";
-      g.id += std::to_string(index);
+      g.id = fmt::format("b{}", index);
       g.rows = rows;
       g.cols = cols;
       for (int i = 0; i < rows; ++i) {

@@ -12,6 +12,7 @@
 #include "search_pattern.hpp"
 #include "timeline.hpp"
 #include "verdict.hpp"
+#include "palpa/vec3.hpp"
 
 // score_session in stages (docs/scoring.md): the case as palpated, marks against tumours,
 // one pass over the samples, the covered area and the search pattern, then the verdict.
@@ -56,7 +57,7 @@ TopPoints mark_results(const session::Session& session, const scene::Scene& scen
   scene::ProbeState state = scene.make_state();
   for (const auto& m : detail::standing(session.events)) {
     out.marks.push_back({m.id, m.t, m.position});
-    tops.marks.push_back(detail::land_on_scene(scene, Vec3(m.position[0], m.position[1], m.position[2]), state));
+    tops.marks.push_back(detail::land_on_scene(scene, to_vec3(m.position), state));
   }
   return tops;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "surface_frame.hpp"
+#include "palpa/vec3.hpp"
 
 namespace palpa::scripted {
 
@@ -70,6 +71,12 @@ constexpr std::size_t kDetourCapacity = 8192;
 constexpr double kBackoffMargin = 0.2;
 constexpr double kBackoffStep = 2e-5;  // m per tick
 constexpr double kNoCap = std::numeric_limits<double>::infinity();
+// A sloppy trainee's false mark goes where nothing was felt: a spot at most this much
+// stiffer than its neighbourhood (tissue's own spread, under any suspicion ratio) ...
+constexpr double kPlainSpotRatio = 1.1;
+// ... and clear of every spot this much stiffer (what a search press may have felt of a
+// tumour, well under the 1.3 suspicion ratio), so a false mark never lands on one.
+constexpr double kFeltSpotRatio = 1.15;
 
 // Cumulative arc length of the top contour along a parameter line (kArcSamples + 1 values).
 template <typename Point>
@@ -455,7 +462,7 @@ void ScriptedTrainee::push_mark(double t, const Vec3& position) noexcept {
   e.t = t;
   e.kind = session::EventKind::Mark;
   e.mark = next_mark_++;
-  e.position = {position.x(), position.y(), position.z()};
+  e.position = to_array(position);
   events_.push_back(e);
 }
 
@@ -639,10 +646,10 @@ void ScriptedTrainee::add_false_marks() noexcept {
     for (std::size_t k = 0; k < spots_.size(); ++k) {
       const std::size_t i = (start + k) % spots_.size();
       const Spot& s = spots_[i];
-      if (stiffness_[i] <= 0.0 || ratio_[i] <= 0.0 || ratio_[i] > 1.1) continue;
+      if (stiffness_[i] <= 0.0 || ratio_[i] <= 0.0 || ratio_[i] > kPlainSpotRatio) continue;
       bool clear = true;
       for (std::size_t j = 0; j < spots_.size() && clear; ++j) {
-        if (ratio_[j] > 1.15 && spots_[j].body == s.body && (spots_[j].top - s.top).squaredNorm() < clear2) clear = false;
+        if (ratio_[j] > kFeltSpotRatio && spots_[j].body == s.body && (spots_[j].top - s.top).squaredNorm() < clear2) clear = false;
       }
       for (int g : group_) {
         const Spot& o = spots_[static_cast<std::size_t>(g)];

@@ -1,7 +1,8 @@
 #include "palpa/scripted/tumour_placement.hpp"
 
 #include <algorithm>
-#include <cstdio>
+
+#include <fmt/format.h>
 
 #include "palpa/scene/scene.hpp"
 #include "surface_frame.hpp"
@@ -47,13 +48,13 @@ io::CaseFile place_tumours(const io::CaseFile& file, std::uint64_t seed, const s
     const auto rule = placement_of(file, k);
     if (!rule) continue;
     mat::Tumour& t = out.tumours[k];
-    const std::string where = "/tumors/" + std::to_string(k) + "/placement";
+    const std::string where = fmt::format("/tumors/{}/placement", k);
     const scene::SceneBody* body = nullptr;
     for (std::size_t b = 0; b < scene.size(); ++b) {
       if (scene.body(b).body.id() == t.body) body = &scene.body(b);
     }
     if (body == nullptr) {
-      problems.push_back({"/tumors/" + std::to_string(k) + "/body", "unknown body \"" + t.body + "\""});
+      problems.push_back({fmt::format("/tumors/{}/body", k), fmt::format("unknown body \"{}\"", t.body)});
       continue;
     }
     bool placed = false;
@@ -76,12 +77,9 @@ io::CaseFile place_tumours(const io::CaseFile& file, std::uint64_t seed, const s
       placed = clear;
     }
     if (!placed) {
-      char text[200];
-      std::snprintf(text, sizeof text,
-                    "no centre inside body \"%s\" and clear of the other tumours in %d draws (seed %llu): "
-                    "widen the ranges or shrink the tumour",
-                    t.body.c_str(), kMaxPlacementDraws, static_cast<unsigned long long>(seed));
-      problems.push_back({where, text});
+      problems.push_back({where, fmt::format("no centre inside body \"{}\" and clear of the other tumours in {} draws "
+                                             "(seed {}): widen the ranges or shrink the tumour",
+                                             t.body, kMaxPlacementDraws, seed)});
     }
   }
   if (!problems.empty()) throw io::CaseError(source, std::move(problems));

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "palpa/session/session_writer.hpp"
 #include "sqlite_util.hpp"
 
@@ -70,9 +72,7 @@ void check_event(const std::string& file, const Event& e) {
   if (!std::isfinite(e.t)) throw SessionError(file, where, "the time is not a finite number");
   const bool has_mark = e.kind == EventKind::Mark || e.kind == EventKind::Unmark;
   if (has_mark && e.mark < 1) {
-    std::string reason = "a mark id must be >= 1, not ";
-    reason += std::to_string(e.mark);
-    throw SessionError(file, where, reason);
+    throw SessionError(file, where, fmt::format("a mark id must be >= 1, not {}", e.mark));
   }
   if (e.kind == EventKind::Mark) {
     for (double x : e.position) {

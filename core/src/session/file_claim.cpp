@@ -15,6 +15,8 @@
 #include <string>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "palpa/session/session.hpp"
 
 namespace palpa::session::detail {
@@ -105,8 +107,9 @@ std::optional<long> other_process_locking(const fs::path& file) {
 void refuse_taken_name(const fs::path& path) {
   if (exists_no_follow(path)) {
     if (const auto pid = other_process_locking(with_suffix(path, "-shm"))) {
-      fail(path, "already exists and another process (pid " + std::to_string(*pid) +
-                     ") has it open, recording into it or reading it; choose a new name");
+      fail(path, fmt::format("already exists and another process (pid {}) has it open, recording into it or "
+                             "reading it; choose a new name",
+                             *pid));
     }
     fail(path, "already exists; recorded sessions are never overwritten, choose a new name");
   }
@@ -124,12 +127,7 @@ void refuse_taken_name(const fs::path& path) {
 }
 
 fs::path creating_path(const fs::path& path) {
-  std::string name = ".";
-  name += path.filename().string();
-  name += ".";
-  name += std::to_string(::getpid());
-  name += kCreatingSuffix;
-  return path.parent_path() / name;
+  return path.parent_path() / fmt::format(".{}.{}{}", path.filename().string(), ::getpid(), kCreatingSuffix);
 }
 
 void remove_abandoned_creations(const fs::path& path) {

@@ -5,15 +5,16 @@
 #include <exception>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace palpa::session {
 
 SessionRecorder::SessionRecorder(engine::RealtimeLoop& loop, SessionWriter& writer, double commit_interval)
     : loop_(&loop), writer_(&writer), commit_interval_(commit_interval) {
   // The format promises at most a second lost to a crash (docs/session-format.md).
   if (!(commit_interval > 0.0 && commit_interval <= 1.0)) {
-    std::string reason = "must be in (0, 1] s, not ";
-    reason += std::to_string(commit_interval);
-    throw SessionError(writer.path().string(), "commit_interval", reason);
+    throw SessionError(writer.path().string(), "commit_interval",
+                       fmt::format("must be in (0, 1] s, not {:f}", commit_interval));
   }
 }
 

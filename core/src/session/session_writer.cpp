@@ -11,6 +11,8 @@
 #include <thread>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "checks.hpp"
 #include "file_claim.hpp"
 #include "palpa/io/case_file.hpp"
@@ -114,12 +116,9 @@ void write_header(const std::filesystem::path& building, const std::string& file
   const DbOwner owner = open_connection(building, file);
   sqlite3* db = owner.get();
   std::string error;
-  std::string schema = "PRAGMA synchronous=FULL; BEGIN; PRAGMA application_id=";
-  schema += std::to_string(detail::kApplicationId);
-  schema += "; PRAGMA user_version=";
-  schema += std::to_string(kFormatVersion);
-  schema += ";";
-  schema += detail::kSchema;
+  const std::string schema =
+      fmt::format("PRAGMA synchronous=FULL; BEGIN; PRAGMA application_id={}; PRAGMA user_version={};{}",
+                  detail::kApplicationId, kFormatVersion, detail::kSchema);
   if (detail::exec(db, schema.c_str(), error) != SQLITE_OK) throw SessionError(file, "schema", error);
 
   detail::Statement meta(db, "INSERT INTO meta(key, value) VALUES(?, ?)");
@@ -131,7 +130,7 @@ void write_header(const std::filesystem::path& building, const std::string& file
     if (step != SQLITE_DONE) throw SessionError(file, std::string("meta ") + key, sqlite3_errmsg(db));
   };
   put("format", std::string(kFormat));
-  put("format_version", std::to_string(kFormatVersion));
+  put("format_version", fmt::format("{}", kFormatVersion));
   put("id", info.id.empty() ? random_id() : info.id);
   put("trainee", info.trainee);
   put("device", info.device);
@@ -140,7 +139,7 @@ void write_header(const std::filesystem::path& building, const std::string& file
   put("rate_hz", detail::exact_text(info.rate_hz));
   put("case_source", info.case_source);
   put("case", checked.case_text);
-  if (info.seed) put("seed", std::to_string(*info.seed));
+  if (info.seed) put("seed", fmt::format("{}", *info.seed));
   put("extra", checked.extra_text);
   meta = detail::Statement();  // finalized before the connection closes
   if (detail::exec(db, "COMMIT", error) != SQLITE_OK) throw SessionError(file, "file", error);
@@ -279,13 +278,7 @@ void require_open(sqlite3* db, const std::filesystem::path& path, const char* wh
 void SessionWriter::append(const engine::Sample& s) {
   require_open(db_, path_, "samples");
   const auto tick = static_cast<sqlite3_int64>(samples_);
-  const auto where = [&](const char* column) {
-    std::string w = "samples tick ";
-    w += std::to_string(tick);
-    w += ": column ";
-    w += column;
-    return w;
-  };
+  const auto where = [&](const char* column) { return fmt::format("samples tick {}: column {}", tick, column); };
   const std::array<double, 7> values{s.t, s.position[0], s.position[1], s.position[2], s.force[0], s.force[1], s.force[2]};
   static constexpr std::array<const char*, 10> kNames{"t", "x", "y", "z", "fx", "fy", "fz", "u", "v", "depth"};
   // SQLite would store NaN as NULL and fail the NOT NULL constraint with a vaguer message.
@@ -302,11 +295,8 @@ void SessionWriter::append(const engine::Sample& s) {
   }
   if (s.body >= 0) {
     if (static_cast<std::size_t>(s.body) >= bodies_) {
-      std::string reason = "the case has ";
-      reason += std::to_string(bodies_);
-      reason += " bodies, there is no body ";
-      reason += std::to_string(s.body);
-      throw SessionError(path_.string(), where("body"), reason);
+      throw SessionError(path_.string(), where("body"),
+                         fmt::format("the case has {} bodies, there is no body {}", bodies_, s.body));
     }
     const std::array<double, 3> contact{s.u, s.v, s.depth};
     for (std::size_t k = 0; k < contact.size(); ++k) {
@@ -368,9 +358,7 @@ void SessionWriter::insert(const engine::Sample& s) {
   const int rc = sqlite3_step(st);
   sqlite3_reset(st);
   if (rc != SQLITE_DONE) {
-    std::string where = "samples tick ";
-    where += std::to_string(tick);
-    throw SessionError(path_.string(), where, sqlite3_errmsg(db_));
+    throw SessionError(path_.string(), fmt::format("samples tick {}", tick), sqlite3_errmsg(db_));
   }
   ++samples_;
   last_t_ = s.t;

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace palpa::spline {
 
 namespace {
@@ -36,8 +38,7 @@ void BandedLU::factorize() {
   for (int k = 0; k < n_; ++k) {
     const double pivot = at(k, k);
     if (!std::isfinite(pivot) || pivot == 0.0) {
-      throw std::runtime_error("singular collocation matrix at row " + std::to_string(k) +
-                               " (coincident parameters?)");
+      throw std::runtime_error(fmt::format("singular collocation matrix at row {} (coincident parameters?)", k));
     }
     const int last_row = std::min(n_ - 1, k + lower_);
     const int last_col = std::min(n_ - 1, k + upper_);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "palpa/spline/basis.hpp"
 #include "../common/numeric.hpp"
 
@@ -51,9 +53,8 @@ std::vector<double> averaged_parameters(std::span<const double> values, int coun
   params[idx(count - 1)] = 1.0;
   for (int k = 1; k < count; ++k) {
     if (!(params[idx(k)] > params[idx(k - 1)])) {
-      throw InterpolationError(std::string("coincident points: parameters along ") + what +
-                               " do not increase between index " + std::to_string(k - 1) + " and " +
-                               std::to_string(k));
+      throw InterpolationError(fmt::format(
+          "coincident points: parameters along {} do not increase between index {} and {}", what, k - 1, k));
     }
   }
   return params;
@@ -86,8 +87,7 @@ std::vector<double> grid_parameters_v(std::span<const double> values, int rows, 
 std::vector<double> averaging_knots(std::span<const double> params, int degree) {
   const int n = static_cast<int>(params.size());
   if (degree < 1 || degree >= n || degree > kMaxDegree) {
-    throw InterpolationError("degree " + std::to_string(degree) + " must be in 1..min(points - 1, " +
-                             std::to_string(kMaxDegree) + ")");
+    throw InterpolationError(fmt::format("degree {} must be in 1..min(points - 1, {})", degree, kMaxDegree));
   }
   std::vector<double> knots(idx(n + degree + 1), 0.0);
   for (int j = 1; j <= n - 1 - degree; ++j) {

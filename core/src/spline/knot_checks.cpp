@@ -4,27 +4,26 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "palpa/spline/basis.hpp"
 
 namespace palpa::spline::detail {
 
 void check_knots(std::span<const double> knots, int degree, int count, const char* what) {
   if (degree < 1 || degree > kMaxDegree) {
-    throw std::invalid_argument(std::string(what) + ": degree " + std::to_string(degree) +
-                                " outside 1.." + std::to_string(kMaxDegree));
+    throw std::invalid_argument(fmt::format("{}: degree {} outside 1..{}", what, degree, kMaxDegree));
   }
   if (count <= degree) {
-    throw std::invalid_argument(std::string(what) + ": " + std::to_string(count) +
-                                " control points are too few for degree " + std::to_string(degree));
+    throw std::invalid_argument(
+        fmt::format("{}: {} control points are too few for degree {}", what, count, degree));
   }
   if (knots.size() != static_cast<std::size_t>(count + degree + 1)) {
-    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(count + degree + 1) +
-                                " knots, got " + std::to_string(knots.size()));
+    throw std::invalid_argument(fmt::format("{}: expected {} knots, got {}", what, count + degree + 1, knots.size()));
   }
   for (std::size_t i = 0; i < knots.size(); ++i) {
     if (!std::isfinite(knots[i]) || (i > 0 && knots[i] < knots[i - 1])) {
-      throw std::invalid_argument(std::string(what) + ": knots must be finite and non-decreasing (index " +
-                                  std::to_string(i) + ")");
+      throw std::invalid_argument(fmt::format("{}: knots must be finite and non-decreasing (index {})", what, i));
     }
   }
   if (!(knots.back() > knots.front())) {
