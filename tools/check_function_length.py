@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Lists functions longer than a limit (docs/architecture.md, "Short functions").
+"""Lists functions longer than a limit (docs/architecture.md, "One vocabulary, short functions").
 
     /usr/bin/python3 tools/check_function_length.py [--repo REPO] [--max 80] [FOLDER...]
 
