@@ -41,8 +41,9 @@ PARTS = {
     "device": {"folders": ["device"], "may": CORE_NAMES | {"device"}},
     "plot": {"folders": ["plot"], "may": {"plot"}},
     "report": {"folders": ["report"], "may": CORE_NAMES | {"plot", "report"}},
+    "lrs": {"folders": ["lrs"], "may": {"lrs"}},
     "ui": {"folders": ["ui"], "may": CORE_NAMES | {"device", "plot", "report", "ui"}},
-    "app": {"folders": ["app"], "may": CORE_NAMES | {"device", "plot", "report", "ui", "options"}},
+    "app": {"folders": ["app"], "may": CORE_NAMES | {"device", "plot", "report", "lrs", "ui", "options"}},
 }
 
 GUI = re.compile(r"#\s*include\s*<(Q[A-Za-z]|QVTK|vtk)")

@@ -27,12 +27,15 @@ Command add_exercise_command(CLI::App& parent);
 Command add_score_command(CLI::App& parent);
 Command add_batch_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
+Command add_lrs_command(CLI::App& parent);
 
 /// --report DIR [--force]: where a session's report files go (none when `dir` is empty), and
 /// whether files already there may be replaced.
 struct ReportRequest {
   std::string dir;
   bool force = false;
+  std::string lrs;                   ///< --lrs URL: send the xAPI statement there (through the outbox)
+  bool lrs_when_configured = false;  ///< also send when an LRS is configured (exercises)
 };
 
 /// Why the report of the session `session` may not be written as `request` asks (a file it
@@ -45,6 +48,10 @@ std::string report_refusal(const std::filesystem::path& session, const ReportReq
 /// JSON) and writes the report files as `report` asks. Returns the exit code (2 for a bad
 /// session or a report it may not write, 1 when the report cannot be written).
 int score_and_report(const std::filesystem::path& path, bool json, const ReportRequest& report);
+
+/// --lrs URL on a command that finishes sessions (score, exercise): where the xAPI statement
+/// goes (docs/centre.md, "Learning record store").
+void add_lrs_option(CLI::App* app, ReportRequest& request);
 
 /// Prints "palpa-cli: error: <message>" on one line of stderr.
 void print_error(const std::string& message);

@@ -177,6 +177,7 @@ Command add_exercise_command(CLI::App& parent) {
                   "also write the session's report into this folder: STEM.html (maps and force plot), STEM.json, "
                   "STEM.xapi.json, STEM.csv; never replaces a file without --force, nor the case");
   app->add_flag("--force", o->report.force, "let --report replace report files that exist");
+  add_lrs_option(app, o->report);
   return {app, [o] { return run_exercise_command(*o); }};
 }
 

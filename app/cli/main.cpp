@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
 
   std::vector<Command> commands{add_validate_command(app), add_fit_command(app), add_probe_command(app),
                                 add_simulate_command(app), add_exercise_command(app), add_score_command(app),
-                                add_batch_command(app), add_bench_command(app), add_devices_command(app)};
+                                add_batch_command(app), add_bench_command(app), add_devices_command(app),
+                                add_lrs_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  print_error("a command is required: validate, fit, probe, simulate, exercise, score, batch, bench or devices (see palpa-cli "
+  print_error("a command is required: validate, fit, probe, simulate, exercise, score, batch, bench, devices or lrs (see palpa-cli "
               "--help)");
   return kBadInput;
 }

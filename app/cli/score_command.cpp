@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "output_guard.hpp"
+#include "xapi_send.hpp"
 #include "palpa/report/report_json.hpp"
 #include "palpa/report/session_report.hpp"
 #include "palpa/score/score.hpp"
@@ -51,6 +52,8 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
     return kBadInput;
   }
   const auto header = report::header_of(session.info, path);
+  const auto xapi = xapi_settings(report);
+  if (!xapi) return kBadInput;
   if (json) {
     std::printf("%s\n", report::report_json(header, score).dump(2).c_str());
   } else {
@@ -59,7 +62,9 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
   std::fflush(stdout);
   if (!report_dir.empty()) {
     try {
-      report::write_session_report(report_dir, path.stem().string(), header, session, score);
+      report::ReportFiles files;
+      files.xapi_home_page = xapi->home_page;
+      report::write_session_report(report_dir, path.stem().string(), header, session, score, files);
     } catch (const std::exception& e) {
       print_error(e.what());
       return kFailure;
@@ -69,7 +74,7 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
       std::printf("report: %s.html (.json, .xapi.json, .csv)\n", stem.c_str());
     }
   }
-  return kOk;
+  return send_statement(header, score, report, *xapi);
 }
 
 Command add_score_command(CLI::App& parent) {
@@ -85,6 +90,7 @@ Command add_score_command(CLI::App& parent) {
                   "statement) and STEM.csv, STEM being the session file's stem; never replaces a file without "
                   "--force, nor the session itself");
   app->add_flag("--force", o->report.force, "let --report replace report files that exist");
+  add_lrs_option(app, o->report);
   return {app, [o] { return run_score(*o); }};
 }
 

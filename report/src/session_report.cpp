@@ -34,7 +34,7 @@ void write_session_report(const std::filesystem::path& dir, const std::string& s
   std::filesystem::create_directories(dir, ec);
   if (ec) throw std::runtime_error(dir.string() + ": cannot create the folder: " + ec.message());
   if (files.json) write_text(dir / (stem + ".json"), report_json(header, score).dump(2) + "\n");
-  if (files.xapi) write_text(dir / (stem + ".xapi.json"), xapi_statement(header, score).dump(2) + "\n");
+  if (files.xapi) write_text(dir / (stem + ".xapi.json"), xapi_statement(header, score, files.xapi_home_page).dump(2) + "\n");
   if (files.csv) write_text(dir / (stem + ".csv"), csv_header() + "\n" + csv_row(header, score) + "\n");
   if (files.html) write_text(dir / (stem + ".html"), session_html(header, score, render_images(session, score)));
 }

@@ -25,7 +25,7 @@ std::string iso8601_duration(double seconds) {
   return text;
 }
 
-nlohmann::json xapi_statement(const SessionHeader& h, const score::Score& s) {
+nlohmann::json xapi_statement(const SessionHeader& h, const score::Score& s, const std::string& home_page) {
   using nlohmann::json;
   const double scaled = std::clamp(std::isfinite(s.score) ? s.score : 0.0, 0.0, 1.0);
   const std::string verb = s.passed ? "passed" : "failed";
@@ -54,7 +54,7 @@ nlohmann::json xapi_statement(const SessionHeader& h, const score::Score& s) {
   json statement = {
       {"id", uuid_v5(kPalpaNamespace, h.id)},
       {"version", "1.0.3"},
-      {"actor", {{"objectType", "Agent"}, {"account", {{"homePage", "urn:palpa"}, {"name", h.trainee}}}}},
+      {"actor", {{"objectType", "Agent"}, {"account", {{"homePage", home_page}, {"name", h.trainee}}}}},
       {"verb", {{"id", "http://adlnet.gov/expapi/verbs/" + verb}, {"display", {{"en-US", verb}}}}},
       {"object",
        {{"objectType", "Activity"},

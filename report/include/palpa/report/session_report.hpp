@@ -14,6 +14,7 @@ namespace palpa::report {
 
 struct ReportFiles {
   bool html = true, json = true, xapi = true, csv = true;
+  std::string xapi_home_page = "urn:palpa";  ///< the actor account's homePage in STEM.xapi.json
 };
 
 /// The files write_session_report writes for these `files`, in `dir` (a caller checks them

@@ -1,6 +1,6 @@
 #pragma once
 // An xAPI 1.0.3 statement for a scored session, for learning record stores: the trainee
-// (actor, an account on "urn:palpa") passed or failed (verb) the case (activity), with the
+// (actor, an account on the centre's homePage) passed or failed (verb) the case (activity), with the
 // score, success, completion, duration and the palpation metrics as result extensions.
 #include <string>
 
@@ -19,6 +19,9 @@ std::string iso8601_duration(double seconds);
 /// the same id (an LRS then treats it as the same statement); timestamp = started_at;
 /// result.score.scaled = score (0..1), raw = 100 * score in [min 0, max 100];
 /// extensions under "urn:palpa:xapi:..." (localization_error_mm null when nothing was found).
-nlohmann::json xapi_statement(const SessionHeader& header, const score::Score& score);
+/// The actor is the account `header.trainee` on `home_page` (the centre's configured homePage,
+/// docs/centre.md; "urn:palpa" when none is configured).
+nlohmann::json xapi_statement(const SessionHeader& header, const score::Score& score,
+                              const std::string& home_page = "urn:palpa");
 
 }  // namespace palpa::report
