@@ -42,8 +42,9 @@ PARTS = {
     "plot": {"folders": ["plot"], "may": {"plot"}},
     "report": {"folders": ["report"], "may": CORE_NAMES | {"plot", "report"}},
     "lrs": {"folders": ["lrs"], "may": {"lrs"}},
+    "store": {"folders": ["store"], "may": CORE_NAMES | {"report", "store"}},
     "ui": {"folders": ["ui"], "may": CORE_NAMES | {"device", "plot", "report", "ui"}},
-    "app": {"folders": ["app"], "may": CORE_NAMES | {"device", "plot", "report", "lrs", "ui", "options"}},
+    "app": {"folders": ["app"], "may": CORE_NAMES | {"device", "plot", "report", "lrs", "store", "ui", "options"}},
 }
 
 GUI = re.compile(r"#\s*include\s*<(Q[A-Za-z]|QVTK|vtk)")

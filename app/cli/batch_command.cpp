@@ -20,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "batch_store.hpp"
 #include "commands.hpp"
 #include "output_guard.hpp"
 #include "palpa/options/number_checks.hpp"
@@ -45,6 +46,7 @@ struct BatchOptions {
   bool include_abandoned = false;  ///< learning curves: also the attempts a trainee abandoned
   bool all_modes = false;          ///< learning curves: every mode, not trainee exercises only
   bool force = false;              ///< the outputs of an earlier batch in --out may be replaced
+  StoreBatchOptions store;         ///< --store: against the centre store (batch_store.cpp)
 };
 
 
@@ -337,11 +339,10 @@ Command add_batch_command(CLI::App& parent) {
                "(skipped files), DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures) and "
                "DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
                "still written), 1 when an output could not be written.");
-  app->add_option("PATH", o->paths, "session files or folders")->required();
+  app->add_option("PATH", o->paths, "session files or folders (required unless --store)");
   app->add_option("--out", o->out,
                   "output folder (created if needed); the outputs of an earlier batch there are replaced only with "
-                  "--force, and never a session given as input")
-      ->required();
+                  "--force, and never a session given as input (required unless --store --worker)");
   app->add_flag("--force", o->force, "replace the outputs of an earlier batch in --out");
   app->add_option("--jobs", o->jobs, "worker threads; default: all cores")->check(options::integer_in(1, 1024));
   app->add_flag("--reports", o->reports, "also write DIR/sessions/STEM.html, STEM.json and STEM.xapi.json per session");
@@ -350,7 +351,22 @@ Command add_batch_command(CLI::App& parent) {
   app->add_flag("--all-modes", o->all_modes,
                 "learning curves count every session (scripted, replays, instructors' Try it), not trainee "
                 "exercises only");
-  return {app, [o] { return run_batch(*o); }};
+  add_store_batch_options(app, o->store);
+  return {app, [o] {
+            if (!o->store.store.empty()) {
+              o->store.jobs = o->jobs;
+              return run_store_batch(o->store, o->out, [o](const std::vector<std::string>& files) {
+                auto folder = *o;
+                folder.paths = files;
+                return run_batch(folder);
+              });
+            }
+            if (o->paths.empty() || o->out.empty()) {
+              print_error(o->paths.empty() ? "batch: PATH is required (or --store)" : "batch: --out is required");
+              return static_cast<int>(kBadInput);
+            }
+            return run_batch(*o);
+          }};
 }
 
 }  // namespace palpa::cli

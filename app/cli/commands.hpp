@@ -26,6 +26,7 @@ Command add_simulate_command(CLI::App& parent);
 Command add_exercise_command(CLI::App& parent);
 Command add_score_command(CLI::App& parent);
 Command add_batch_command(CLI::App& parent);
+Command add_store_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
 Command add_lrs_command(CLI::App& parent);
 

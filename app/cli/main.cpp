@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
                                 add_simulate_command(app), add_exercise_command(app), add_score_command(app),
                                 add_batch_command(app), add_bench_command(app), add_devices_command(app),
                                 add_lrs_command(app)};
+  commands.push_back(add_store_command(app));  // the centre store (docs/centre.md)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,30 @@
+#pragma once
+// palpa-cli batch --store URL: the batch against the centre store (docs/centre.md).
+// --worker scores the store's unscored sessions; --out DIR writes the folder batch's outputs
+// (summary.csv, learning curves, cohort.html) from the stored sessions.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace palpa::cli {
+
+struct StoreBatchOptions {
+  std::string store;      ///< libpq connection string; empty: the folder batch
+  bool worker = false;
+  bool follow = false;    ///< worker: keep polling when nothing is left
+  double lease_s = 600.0;
+  int jobs = 0;           ///< worker threads (batch's --jobs); 0: all cores
+};
+
+/// Declares --store, --worker, --follow and --lease on the batch command.
+void add_store_batch_options(CLI::App* app, StoreBatchOptions& o);
+
+/// Runs the batch against the store. Without --worker, downloads the stored sessions into
+/// OUT/stored/STATION/ and calls `folder_batch` on those files, so the outputs are the
+/// folder batch's own.
+int run_store_batch(const StoreBatchOptions& o, const std::string& out,
+                    const std::function<int(const std::vector<std::string>&)>& folder_batch);
+
+}  // namespace palpa::cli

@@ -1,0 +1,218 @@
+// palpa-cli store init|push|status: the centre store on PostgreSQL (docs/centre.md).
+// init creates or migrates the schema; push uploads finished sessions, queueing them in the
+// station's outbox when the server cannot be reached; status lists what waits there.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "palpa/store/catalog.hpp"
+#include "palpa/store/config.hpp"
+#include "palpa/store/outbox.hpp"
+#include "palpa/store/push.hpp"
+#include "palpa/store/schema.hpp"
+
+namespace palpa::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct StoreOptions {
+  std::string url;  ///< init: the positional URL
+  std::vector<std::string> sessions;
+  std::string store, station, outbox;
+  bool outbox_only = false;
+};
+
+void say(const std::string& line) { std::printf("%s\n", line.c_str()); }
+
+int run_init(const StoreOptions& o) {
+  try {
+    store::Connection c(o.url);
+    const auto r = store::init_schema(c);
+    if (r.from == r.to) {
+      say(fmt::format("store: {}: schema version {}, already up to date", c.target(), r.to));
+    } else {
+      say(fmt::format("store: {}: schema version {} (was {})", c.target(), r.to, r.from));
+    }
+    return kOk;
+  } catch (const store::StoreError& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+}
+
+std::optional<store::StoreSettings> settings_of(const StoreOptions& o, bool need_store) {
+  try {
+    auto s = store::resolve_settings(o.store, o.station, o.outbox);
+    if (need_store && s.conninfo.empty()) {
+      print_error(fmt::format("no store configured: give --store, set PALPA_STORE or write \"store\" in {}",
+                              store::config_path().string()));
+      return std::nullopt;
+    }
+    return s;
+  } catch (const store::StoreError& e) {
+    print_error(e.what());
+    return std::nullopt;
+  }
+}
+
+// Queues `p` in the outbox because of `why`; false when even the outbox cannot take it.
+bool queue(const store::StoreSettings& s, const store::PreparedSession& p, const std::string& why) {
+  try {
+    const auto e = store::queue_session(s.outbox, p, why);
+    say(fmt::format("queued: {} in {} ({})", p.path.string(), e.file.string(), why));
+    return true;
+  } catch (const store::StoreError& e) {
+    print_error(fmt::format("{}: not pushed and not queued: {}", p.path.string(), e.what()));
+    return false;
+  }
+}
+
+void report_flush(const store::FlushResult& r) {
+  for (const auto& e : r.errors) print_error("outbox: " + e);
+  if (r.sent + r.waiting > 0) say(fmt::format("outbox: {} sent, {} waiting", r.sent, r.waiting));
+}
+
+// Pushes the prepared sessions over `c`; a broken connection queues the rest.
+int push_all(store::Connection& c, const store::StoreSettings& s, const std::vector<store::PreparedSession>& all) {
+  int code = kOk;
+  std::string broken;
+  for (const auto& p : all) {
+    if (!broken.empty()) {
+      if (!queue(s, p, broken)) code = kFailure;
+      continue;
+    }
+    try {
+      const auto r = store::push_prepared(c, p, s.station);
+      say(fmt::format("{}: {} (session {}, sha-256 {})",
+                      r.status == store::PushStatus::Stored ? "stored" : "already stored", p.path.string(),
+                      r.session_id, r.sha256));
+    } catch (const store::StoreError& e) {
+      if (e.unreachable()) {
+        broken = e.what();
+        if (!queue(s, p, broken)) code = kFailure;
+      } else {
+        print_error(e.what());
+        if (code == kOk) code = kBadInput;
+      }
+    }
+  }
+  return code;
+}
+
+int run_push(const StoreOptions& o) {
+  const auto s = settings_of(o, true);
+  if (!s) return kBadInput;
+  if (!o.outbox_only && o.sessions.empty()) {
+    print_error("store push: give SESSION files, or --outbox-only to send what the outbox holds");
+    return kBadInput;
+  }
+  int code = kOk;
+  std::vector<store::PreparedSession> prepared;
+  for (const auto& path : o.sessions) {
+    try {
+      prepared.push_back(store::prepare_session(path));
+    } catch (const store::StoreError& e) {
+      print_error(e.what());
+      code = kBadInput;
+    }
+  }
+  std::unique_ptr<store::Connection> c;
+  try {
+    c = std::make_unique<store::Connection>(s->conninfo);
+    store::check_schema(*c);
+  } catch (const store::StoreError& e) {
+    if (!e.unreachable()) {
+      print_error(e.what());
+      return kFailure;
+    }
+    print_error(e.what());
+    for (const auto& p : prepared) {
+      if (!queue(*s, p, e.what())) code = kFailure;
+    }
+    store::mark_unreachable(s->outbox, e.what());
+    return code;
+  }
+  const int pushed = push_all(*c, *s, prepared);
+  if (pushed != kOk && code == kOk) code = pushed;
+  report_flush(store::flush_outbox(*c, s->outbox, s->station));
+  return code;
+}
+
+void print_outbox(const store::StoreSettings& s) {
+  const auto entries = store::list_outbox(s.outbox);
+  say(fmt::format("outbox {}: {} waiting", s.outbox.string(), entries.size()));
+  for (const auto& e : entries) {
+    say(fmt::format("  {}  trainee {}  started {}  {} bytes  queued {}  attempts {}", e.file.filename().string(),
+                    e.trainee, e.started_at, e.size, e.queued_at, e.attempts));
+    if (!e.source.empty()) say("    from: " + e.source);
+    if (!e.last_error.empty()) say("    last error: " + e.last_error);
+  }
+}
+
+int run_status(const StoreOptions& o) {
+  const auto s = settings_of(o, false);
+  if (!s) return kBadInput;
+  say(fmt::format("station: {}", s->station));
+  print_outbox(*s);
+  if (s->conninfo.empty()) {
+    say("store: none configured (--store, PALPA_STORE or " + store::config_path().string() + ")");
+    return kOk;
+  }
+  try {
+    store::Connection c(s->conninfo);
+    store::check_schema(c);
+    long long total = 0;
+    std::string by_station;
+    for (const auto& n : store::my_session_counts(c)) {
+      total += n.sessions;
+      by_station += fmt::format("{}{} from {}", by_station.empty() ? "" : ", ", n.sessions, n.station);
+    }
+    say(fmt::format("store {}: {} sessions stored by this login{}", c.target(), total,
+                    by_station.empty() ? "" : " (" + by_station + ")"));
+    return kOk;
+  } catch (const store::StoreError& e) {
+    say(e.what());
+    return e.unreachable() ? kOk : kFailure;
+  }
+}
+
+void add_station_options(CLI::App* app, StoreOptions& o) {
+  app->add_option("--store", o.store,
+                  "libpq connection string or URI (passwords: ~/.pgpass or a service file, never here); default "
+                  "PALPA_STORE, then \"store\" in $XDG_CONFIG_HOME/palpa/store.json");
+  app->add_option("--station", o.station, "this station's name; default PALPA_STATION, the config file, the host name");
+  app->add_option("--outbox", o.outbox,
+                  "outbox folder; default PALPA_OUTBOX, the config file, $XDG_DATA_HOME/palpa/outbox "
+                  "(~/.local/share/palpa/outbox)");
+}
+
+}  // namespace
+
+Command add_store_command(CLI::App& parent) {
+  auto o = std::make_shared<StoreOptions>();
+  auto* app = parent.add_subcommand("store", "The centre store on PostgreSQL (docs/centre.md): init, push, status.");
+  app->require_subcommand(1);
+  auto* init = app->add_subcommand("init", "Create or migrate the store's schema and its roles (as the database owner).");
+  init->add_option("URL", o->url, "libpq connection string or URI of the database")->required();
+  auto* push = app->add_subcommand(
+      "push", "Upload finished sessions (idempotent by session id, verified by SHA-256); when the server cannot be "
+              "reached they are copied into the outbox. Then sends what the outbox holds.");
+  push->add_option("SESSION", o->sessions, "session files (.palpa)");
+  push->add_flag("--outbox-only", o->outbox_only, "only send what the outbox holds");
+  add_station_options(push, *o);
+  auto* status = app->add_subcommand("status", "List the outbox and, when the store is reachable, this login's uploads.");
+  add_station_options(status, *o);
+  return {app, [o, init, push] {
+            if (init->parsed()) return run_init(*o);
+            if (push->parsed()) return run_push(*o);
+            return run_status(*o);
+          }};
+}
+
+}  // namespace palpa::cli

@@ -1,0 +1,36 @@
+#pragma once
+// What a coordinator reads back from the store: the stored sessions (filtered) and their
+// files, for palpa-cli batch --store --out and palpa-cli store status.
+#include <string>
+#include <vector>
+
+#include "palpa/store/pg.hpp"
+
+namespace palpa::store {
+
+struct SessionFilter {
+  std::string since;    ///< started_at >= this (ISO 8601 date or time); empty: no bound
+  std::string until;    ///< started_at < this; empty: no bound
+  std::string trainee;  ///< exact trainee id; empty: every trainee
+};
+
+struct StoredSession {
+  long long id = 0;
+  std::string session_id, station, trainee, file_name, sha256, started_at;
+  bool scored = false;  ///< has a score row (any scorer version)
+};
+
+/// The stored sessions matching `filter`, by station then start time.
+std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& filter);
+
+/// The stored bytes of session `id` (sessions.id).
+std::string session_file(Connection& c, long long id);
+
+/// Sessions uploaded by the connected login (station_sessions), by station name.
+struct StationCount {
+  std::string station;
+  long long sessions = 0;
+};
+std::vector<StationCount> my_session_counts(Connection& c);
+
+}  // namespace palpa::store

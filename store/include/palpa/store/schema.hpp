@@ -1,0 +1,27 @@
+#pragma once
+// The centre store's schema (docs/centre.md): versioned migrations, each applied in its
+// own transaction and recorded in palpa_schema(version, applied_at).
+#include <string>
+
+#include "palpa/store/pg.hpp"
+
+namespace palpa::store {
+
+/// The schema version this Palpa writes and reads (the number of migrations it knows).
+int known_schema_version();
+
+struct InitResult {
+  int from = 0;  ///< the version found (0: an empty database)
+  int to = 0;    ///< the version now
+};
+
+/// Creates or migrates the schema, the tables, the roles palpa_station, palpa_worker and
+/// palpa_coordinator and their grants. Idempotent. Throws StoreError when the database's
+/// version is newer than known_schema_version(), or a migration fails (it is rolled back).
+InitResult init_schema(Connection& c);
+
+/// Throws StoreError unless the database holds exactly the version this Palpa knows
+/// (older: "run palpa-cli store init"; newer: "upgrade Palpa").
+void check_schema(Connection& c);
+
+}  // namespace palpa::store

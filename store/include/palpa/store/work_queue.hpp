@@ -1,0 +1,42 @@
+#pragma once
+// The work queue of the store's scoring workers (docs/centre.md, "Workers and leases"):
+// a worker claims one unscored session with SELECT ... FOR UPDATE SKIP LOCKED and a lease
+// (owner, expiry), commits the claim, scores it, then writes the score and ends the claim
+// in one transaction only if it still holds the lease. An expired lease may be taken by
+// another worker, so a killed worker's session is scored by the next one.
+#include <optional>
+#include <string>
+
+#include "palpa/store/pg.hpp"
+
+namespace palpa::store {
+
+struct Claim {
+  long long id = 0;         ///< sessions.id
+  std::string session_id;   ///< the session file's own id
+  std::string file_name;
+  std::string file;         ///< the session file's bytes
+};
+
+/// Claims the next unscored session for `owner` for `lease_s` seconds; nothing when no
+/// session is free to claim now.
+std::optional<Claim> claim_next(Connection& c, const std::string& owner, double lease_s);
+
+/// Sessions not scored yet (claimed or not).
+long long pending_count(Connection& c);
+
+struct ScoreRow {
+  std::string scorer_version, thresholds_sha256, result_json;
+  double score = 0.0;
+  bool passed = false;
+};
+
+/// Writes the score and ends the claim in one transaction if `owner` still holds it;
+/// false (nothing written) when another worker took the session over.
+bool finish_claim(Connection& c, const Claim& claim, const std::string& owner, const ScoreRow& row);
+
+/// Ends the claim of a session that cannot be scored, keeping the reason in last_error
+/// (it is not claimed again); false when the lease was lost.
+bool fail_claim(Connection& c, const Claim& claim, const std::string& owner, const std::string& error);
+
+}  // namespace palpa::store

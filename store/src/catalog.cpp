@@ -1,0 +1,45 @@
+#include "palpa/store/catalog.hpp"
+
+namespace palpa::store {
+namespace {
+
+Param optional_text(const std::string& v) { return v.empty() ? Param::null() : Param::text(v); }
+
+}  // namespace
+
+std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) {
+  const auto r = c.exec(
+      "list the stored sessions",
+      "SELECT s.id, s.session_id, s.station, t.name, s.file_name, s.sha256, "
+      "to_char(s.started_at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'), "
+      "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id) "
+      "FROM sessions s JOIN trainees t ON t.id = s.trainee_id "
+      "WHERE ($1::timestamptz IS NULL OR s.started_at >= $1::timestamptz) "
+      "AND ($2::timestamptz IS NULL OR s.started_at < $2::timestamptz) "
+      "AND ($3::text IS NULL OR t.name = $3::text) "
+      "ORDER BY s.station, s.started_at, s.session_id",
+      {optional_text(f.since), optional_text(f.until), optional_text(f.trainee)});
+  std::vector<StoredSession> all;
+  for (int i = 0; i < r.rows(); ++i) {
+    all.push_back({r.integer(i, 0), r.text(i, 1), r.text(i, 2), r.text(i, 3), r.text(i, 4), r.text(i, 5),
+                   r.text(i, 6), r.text(i, 7) == "t"});
+  }
+  return all;
+}
+
+std::string session_file(Connection& c, long long id) {
+  const auto r = c.exec("read a stored session", "SELECT file FROM sessions WHERE id = $1::bigint",
+                        {Param::text(std::to_string(id))}, true);
+  if (r.rows() != 1) throw StoreError("store: session " + std::to_string(id) + " is gone", false);
+  return r.bytes(0, 0);
+}
+
+std::vector<StationCount> my_session_counts(Connection& c) {
+  const auto r = c.exec("count this login's sessions",
+                        "SELECT station, count(*) FROM station_sessions GROUP BY station ORDER BY station");
+  std::vector<StationCount> counts;
+  for (int i = 0; i < r.rows(); ++i) counts.push_back({r.text(i, 0), r.integer(i, 1)});
+  return counts;
+}
+
+}  // namespace palpa::store

@@ -1,0 +1,151 @@
+#include "palpa/store/outbox.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <ctime>
+#include <fstream>
+#include <tuple>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace palpa::store {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+fs::path meta_path(const fs::path& file) {
+  auto p = file;
+  p.replace_extension(".json");
+  return p;
+}
+
+// Writes `text` to `path` through a temporary file renamed into place.
+void write_atomically(const fs::path& path, const std::string& text) {
+  const auto tmp = path.parent_path() / fmt::format(".{}.{}.tmp", path.filename().string(), getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw StoreError(fmt::format("{}: outbox: cannot write {}", path.parent_path().string(), tmp.string()), false);
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw StoreError(fmt::format("{}: outbox: cannot write: {}", path.string(), ec.message()), false);
+  }
+}
+
+void write_meta(const OutboxEntry& e) {
+  const nlohmann::json j{{"source", e.source},         {"session_id", e.session_id}, {"trainee", e.trainee},
+                         {"started_at", e.started_at}, {"size", e.size},             {"queued_at", e.queued_at},
+                         {"attempts", e.attempts},     {"last_error", e.last_error}};
+  write_atomically(meta_path(e.file), j.dump(2) + "\n");
+}
+
+OutboxEntry read_entry(const fs::path& file) {
+  OutboxEntry e;
+  e.file = file;
+  std::error_code ec;
+  e.size = fs::file_size(file, ec);
+  try {
+    std::ifstream in(meta_path(file));
+    const auto j = nlohmann::json::parse(in);
+    e.source = j.value("source", "");
+    e.session_id = j.value("session_id", "");
+    e.trainee = j.value("trainee", "");
+    e.started_at = j.value("started_at", "");
+    e.queued_at = j.value("queued_at", "");
+    e.attempts = j.value("attempts", 0);
+    e.last_error = j.value("last_error", "");
+  } catch (const nlohmann::json::exception& x) {
+    e.last_error = fmt::format("{}: unreadable: {}", meta_path(file).string(), x.what());
+  }
+  return e;
+}
+
+}  // namespace
+
+OutboxEntry queue_session(const fs::path& outbox, const PreparedSession& s, const std::string& error) {
+  std::error_code ec;
+  fs::create_directories(outbox, ec);
+  if (ec) throw StoreError(fmt::format("{}: outbox: cannot create: {}", outbox.string(), ec.message()), false);
+  const auto file = outbox / (s.session_id + ".palpa");
+  if (fs::exists(file, ec)) {
+    auto e = read_entry(file);
+    record_attempt(e, error);
+    return read_entry(file);
+  }
+  write_atomically(file, s.bytes);  // the bytes already checksummed, not a new read
+  OutboxEntry e{file, fs::absolute(s.path, ec).string(), s.session_id, s.trainee, s.started_at, now_utc(), error,
+                s.bytes.size(), 1};
+  write_meta(e);
+  return e;
+}
+
+std::vector<OutboxEntry> list_outbox(const fs::path& outbox) {
+  std::vector<OutboxEntry> entries;
+  std::error_code ec;
+  for (fs::directory_iterator it(outbox, ec), end; !ec && it != end; it.increment(ec)) {
+    const auto& p = it->path();
+    if (p.extension() == ".palpa" && p.filename().string().front() != '.') entries.push_back(read_entry(p));
+  }
+  std::sort(entries.begin(), entries.end(), [](const OutboxEntry& a, const OutboxEntry& b) {
+    return std::tie(a.queued_at, a.file) < std::tie(b.queued_at, b.file);
+  });
+  return entries;
+}
+
+void record_attempt(const OutboxEntry& entry, const std::string& error) {
+  auto e = entry;
+  e.attempts += 1;
+  e.last_error = error;
+  write_meta(e);
+}
+
+void remove_entry(const OutboxEntry& entry) {
+  std::error_code ec;
+  fs::remove(meta_path(entry.file), ec);
+  fs::remove(entry.file, ec);
+}
+
+void mark_unreachable(const fs::path& outbox, const std::string& error) {
+  for (const auto& e : list_outbox(outbox)) record_attempt(e, error);
+}
+
+FlushResult flush_outbox(Connection& c, const fs::path& outbox, const std::string& station) {
+  FlushResult r;
+  bool broken = false;
+  for (const auto& e : list_outbox(outbox)) {
+    if (broken) {
+      ++r.waiting;
+      continue;
+    }
+    try {
+      auto session = prepare_session(e.file);
+      if (!e.source.empty()) session.file_name = fs::path(e.source).filename().string();
+      push_prepared(c, session, station);
+      remove_entry(e);
+      ++r.sent;
+    } catch (const StoreError& x) {
+      record_attempt(e, x.what());
+      r.errors.push_back(fmt::format("{} (from {}): {}", e.file.string(), e.source, x.what()));
+      ++r.waiting;
+      broken = x.unreachable();
+    }
+  }
+  return r;
+}
+
+}  // namespace palpa::store

@@ -1,0 +1,90 @@
+#include "palpa/store/pg.hpp"
+
+#include <cstdlib>
+
+#include <fmt/format.h>
+
+namespace palpa::store {
+
+std::string one_line(std::string message) {
+  std::string out;
+  for (char ch : message) {
+    if (ch == '\n' || ch == '\t' || ch == '\r') ch = ' ';
+    if (ch == ' ' && (out.empty() || out.back() == ' ')) continue;
+    out += ch;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+std::string target_of(const PGconn* conn) {
+  auto field = [](const char* v) { return std::string(v && *v ? v : "?"); };
+  auto* c = const_cast<PGconn*>(conn);
+  std::string host = field(PQhost(c));
+  if (!host.empty() && host.front() == '/') host = "[socket " + host + "]";
+  return fmt::format("{}:{}/{} as {}", host, field(PQport(c)), field(PQdb(c)), field(PQuser(c)));
+}
+
+std::string Result::text(int row, int col) const {
+  if (is_null(row, col)) return {};
+  return std::string(PQgetvalue(r_.get(), row, col), static_cast<std::size_t>(PQgetlength(r_.get(), row, col)));
+}
+
+std::string Result::bytes(int row, int col) const { return text(row, col); }
+
+long long Result::integer(int row, int col) const { return std::strtoll(text(row, col).c_str(), nullptr, 10); }
+
+Connection::Connection(const std::string& conninfo) : c_(PQconnectdb(conninfo.c_str()), &PQfinish) {
+  if (!c_) throw StoreError("store: cannot connect: out of memory", true);
+  if (PQstatus(c_.get()) != CONNECTION_OK) {
+    throw StoreError(fmt::format("store: cannot connect to {}: {}", target_of(c_.get()),
+                                 one_line(PQerrorMessage(c_.get()))),
+                     true);
+  }
+  // Notices (e.g. "relation already exists, skipping") are not for the user's terminal.
+  PQsetNoticeProcessor(c_.get(), [](void*, const char*) {}, nullptr);
+}
+
+std::string Connection::target() const { return target_of(c_.get()); }
+
+void Connection::fail(std::string_view what, const PGresult* r) const {
+  const bool broken = PQstatus(c_.get()) != CONNECTION_OK;
+  std::string message = r ? PQresultErrorMessage(r) : "";
+  if (message.empty()) message = PQerrorMessage(c_.get());
+  throw StoreError(fmt::format("store: {}: {}", what, one_line(message)), broken);
+}
+
+Result Connection::exec(std::string_view what, const char* sql, const std::vector<Param>& params,
+                        bool binary_result) {
+  std::vector<const char*> values;
+  std::vector<int> lengths, formats;
+  for (const auto& p : params) {
+    values.push_back(p.value ? p.value->data() : nullptr);
+    lengths.push_back(p.value ? static_cast<int>(p.value->size()) : 0);
+    formats.push_back(p.binary ? 1 : 0);
+  }
+  Result r(PQexecParams(c_.get(), sql, static_cast<int>(params.size()), nullptr, values.data(), lengths.data(),
+                        formats.data(), binary_result ? 1 : 0));
+  const auto status = PQresultStatus(r.get());
+  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) fail(what, r.get());
+  return r;
+}
+
+void Connection::exec_script(std::string_view what, const char* sql) {
+  Result r(PQexec(c_.get(), sql));
+  const auto status = PQresultStatus(r.get());
+  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) fail(what, r.get());
+}
+
+Transaction::Transaction(Connection& c) : c_(c) { c_.exec("begin a transaction", "BEGIN"); }
+
+Transaction::~Transaction() {
+  if (!done_) PQclear(PQexec(c_.get(), "ROLLBACK"));
+}
+
+void Transaction::commit() {
+  c_.exec("commit", "COMMIT");
+  done_ = true;
+}
+
+}  // namespace palpa::store

@@ -1,0 +1,94 @@
+#include "palpa/store/push.hpp"
+
+#include <fmt/format.h>
+
+#include "palpa/session/session_reader.hpp"
+#include "palpa/store/sha256.hpp"
+
+namespace palpa::store {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json events_json(const std::vector<session::Event>& events) {
+  auto all = nlohmann::json::array();
+  for (const auto& e : events) {
+    nlohmann::json event{{"t", e.t}, {"kind", std::string(session::to_string(e.kind))}, {"note", e.note}};
+    if (e.mark >= 0) event["mark"] = e.mark;
+    if (e.kind == session::EventKind::Mark) event["position"] = e.position;
+    all.push_back(std::move(event));
+  }
+  return all;
+}
+
+}  // namespace
+
+PreparedSession prepare_session(const fs::path& path) {
+  std::error_code ec;
+  auto wal = path;
+  wal += "-wal";
+  if (fs::file_size(wal, ec) > 0 && !ec) {
+    throw StoreError(fmt::format("{}: has a -wal beside it: still being recorded (or open in another program); "
+                                 "not pushed",
+                                 path.string()),
+                     false);
+  }
+  PreparedSession p;
+  p.path = path;
+  p.file_name = path.filename().string();
+  p.bytes = read_file_bytes(path);
+  session::Session s;
+  try {
+    s = session::read_session(path);
+  } catch (const session::SessionError& e) {
+    throw StoreError(e.what(), false);
+  }
+  if (!s.complete) {
+    throw StoreError(fmt::format("{}: session incomplete (no end event: still recording or cut short); not pushed",
+                                 path.string()),
+                     false);
+  }
+  p.sha256 = sha256_hex(p.bytes);
+  p.session_id = s.info.id;
+  p.trainee = s.info.trainee;
+  p.started_at = s.info.started_at;
+  p.mode = session::session_mode(s.info);
+  p.case_document = s.info.case_document;
+  p.case_title = s.info.case_document.value("title", std::string());
+  p.case_sha256 = sha256_hex(s.info.case_document.dump());
+  p.events = events_json(s.events);
+  p.complete = s.complete;
+  p.samples = s.samples.size();
+  return p;
+}
+
+PushResult push_prepared(Connection& c, const PreparedSession& p, const std::string& station) {
+  Transaction t(c);
+  const auto r = c.exec(fmt::format("push {}", p.path.string()),
+                        "SELECT stored, server_sha256 FROM palpa_push_session($1, $2, $3, $4, $5, $6::jsonb, "
+                        "$7::timestamptz, $8, $9::boolean, $10::bigint, $11, $12::jsonb, $13::bytea)",
+                        {Param::text(station), Param::text(p.session_id), Param::text(p.trainee),
+                         Param::text(p.case_sha256), Param::text(p.case_title), Param::text(p.case_document.dump()),
+                         Param::text(p.started_at), Param::text(p.mode), Param::text(p.complete ? "true" : "false"),
+                         Param::text(std::to_string(p.samples)), Param::text(p.file_name),
+                         Param::text(p.events.dump()), Param::bytes(p.bytes)});
+  PushResult result;
+  result.status = r.text(0, 0) == "t" ? PushStatus::Stored : PushStatus::AlreadyStored;
+  result.session_id = p.session_id;
+  result.sha256 = r.text(0, 1);
+  if (result.sha256 != p.sha256) {
+    throw StoreError(fmt::format("{}: session {} {} with SHA-256 {}, the file has {}; nothing changed",
+                                 p.path.string(), p.session_id,
+                                 result.status == PushStatus::Stored ? "was stored" : "is already stored",
+                                 result.sha256, p.sha256),
+                     false);
+  }
+  t.commit();
+  return result;
+}
+
+PushResult push_session(Connection& c, const fs::path& path, const std::string& station) {
+  return push_prepared(c, prepare_session(path), station);
+}
+
+}  // namespace palpa::store
