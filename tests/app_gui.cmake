@@ -4,10 +4,11 @@ add_executable(ui_app_tests
   ui/app_windows_test.cpp
   ${PROJECT_SOURCE_DIR}/app/gui/app_windows.cpp  # the code under test, from the application
   ${PROJECT_SOURCE_DIR}/app/gui/gui_device.cpp
+  ${PROJECT_SOURCE_DIR}/app/gui/session_upload.cpp
 )
 set_target_properties(ui_app_tests PROPERTIES AUTOMOC ON)
 target_include_directories(ui_app_tests PRIVATE ${PROJECT_SOURCE_DIR}/app/gui)
-target_link_libraries(ui_app_tests PRIVATE palpa_ui palpa_device Qt5::Test)
+target_link_libraries(ui_app_tests PRIVATE palpa_ui palpa_device palpa_store palpa_lrs Qt5::Test Qt5::Network)
 target_compile_definitions(ui_app_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 vtk_module_autoinit(TARGETS ui_app_tests MODULES ${VTK_LIBRARIES})
 palpa_warnings(ui_app_tests)

@@ -12,7 +12,9 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPointer>
 #include <QStatusBar>
+#include <QThread>
 
 #include "palpa/author/case_draft.hpp"
 #include "palpa/device/device_error.hpp"
@@ -27,6 +29,7 @@
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/session_paths.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "session_upload.hpp"
 
 namespace palpa::gui {
 
@@ -45,6 +48,31 @@ std::filesystem::path default_session_path() { return ui::new_session_path(ui::s
 
 AppWindows::AppWindows(TraineeSettings settings) : settings_(std::move(settings)) {}
 
+AppWindows::~AppWindows() {
+  for (QThread* t : uploads_) {
+    t->wait();
+    delete t;
+  }
+}
+
+void AppWindows::upload_when_finished(ui::TraineeWindow& window) {
+  connect(&window, &ui::TraineeWindow::session_ended, this, [this, w = QPointer<ui::TraineeWindow>(&window)](
+                                                                const QString& path, bool scored) {
+    std::optional<score::Score> score;
+    if (scored && w && w->score()) score = *w->score();
+    auto* thread = QThread::create([this, w, file = path.toStdString(), score] {
+      const UploadOutcome outcome = upload_finished_session(file, score ? &*score : nullptr);
+      QMetaObject::invokeMethod(this, [w, text = upload_status_text(outcome)] {
+        if (w) w->show_upload_state(text);
+      }, Qt::QueuedConnection);
+    });
+    // Threads of earlier exercises that are done go now; running ones are waited for at exit.
+    std::erase_if(uploads_, [](QThread* t) { return t->isFinished() ? (delete t, true) : false; });
+    uploads_.push_back(thread);
+    thread->start();
+  });
+}
+
 void AppWindows::fail(const QString& line, QWidget* parent) {
   last_error_ = line;
   if (parent) {
@@ -61,6 +89,7 @@ void AppWindows::adopt(QMainWindow& window) {
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
   connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
   add_device_menu(window);
+  if (auto* trainee = qobject_cast<ui::TraineeWindow*>(&window)) upload_when_finished(*trainee);
   // The instructor's Try it palpates with the device chosen here, like any exercise.
   if (auto* instructor = qobject_cast<ui::InstructorWindow*>(&window)) {
     instructor->set_device_opener(

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <QObject>
 #include <QString>
@@ -14,7 +15,12 @@
 #include "gui_device.hpp"
 
 class QMainWindow;
+class QThread;
 class QWidget;
+
+namespace palpa::ui {
+class TraineeWindow;
+}
 
 namespace palpa::gui {
 
@@ -35,6 +41,8 @@ class AppWindows : public QObject {
   Q_OBJECT
  public:
   explicit AppWindows(TraineeSettings settings);
+  /// Waits for uploads still running (each is bounded by its connection timeouts).
+  ~AppWindows() override;
 
   /// Each opens a window and shows it, or reports why not (the one-line error: in a
   /// message box over `parent`, on stderr without one) and returns nullptr.
@@ -57,10 +65,14 @@ class AppWindows : public QObject {
   void fail(const QString& line, QWidget* parent);
   /// The Device menu: what is attached now (listed again each time it opens: hot-plug).
   void add_device_menu(QMainWindow& window);
+  /// After an exercise: the session to the centre store and its statement to the LRS, off
+  /// the GUI thread; the outcome goes to the window's status bar while it is open.
+  void upload_when_finished(ui::TraineeWindow& window);
 
   TraineeSettings settings_;
   bool first_trainee_ = true;
   QString last_error_;
+  std::vector<QThread*> uploads_;
 };
 
 }  // namespace palpa::gui

@@ -6,7 +6,11 @@
 #include <QFile>
 #include <QMenu>
 #include <QMenuBar>
+#include <QPushButton>
+#include <QLabel>
 #include <QSurfaceFormat>
+#include <QTcpServer>
+#include <QTcpSocket>
 #include <QTemporaryDir>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QtTest>
@@ -31,6 +35,43 @@ int open_windows() {
   }
   return n;
 }
+
+// A loopback receiver standing in for a learning record store: records each request's first
+// line and answers 204 No Content, as an LRS answers a PUT of a statement it now holds.
+// (Palpa's statements against a real LRS: cli.lrs.)
+int content_length(const QByteArray& head) {
+  for (const QByteArray& line : head.toLower().split('\n')) {
+    if (line.startsWith("content-length:")) return line.mid(15).trimmed().toInt();
+  }
+  return 0;
+}
+
+class LoopbackLrs : public QObject {
+ public:
+  LoopbackLrs() {
+    server_.listen(QHostAddress::LocalHost, 0);
+    connect(&server_, &QTcpServer::newConnection, this, [this] {
+      QTcpSocket* s = server_.nextPendingConnection();
+      connect(s, &QTcpSocket::readyRead, s, [this, s] {
+        buffer_ += s->readAll();
+        const int end = buffer_.indexOf("\r\n\r\n");
+        if (end < 0) return;
+        const int length = content_length(buffer_.left(end));
+        if (buffer_.size() < end + 4 + length) return;
+        requests << QString::fromUtf8(buffer_.left(buffer_.indexOf("\r\n")));
+        buffer_.clear();
+        s->write("HTTP/1.1 204 No Content\r\nConnection: close\r\n\r\n");
+        s->disconnectFromHost();
+      });
+    });
+  }
+  QString endpoint() const { return QString("http://127.0.0.1:%1/xapi").arg(server_.serverPort()); }
+  QStringList requests;
+
+ private:
+  QTcpServer server_;
+  QByteArray buffer_;
+};
 
 }  // namespace
 
@@ -126,6 +167,42 @@ class AppWindowsTest : public QObject {
     auto* trainee = window->try_it();
     QVERIFY(trainee);
     QCOMPARE(trainee->exercise().device_name(), std::string("virtual (mouse)"));
+  }
+
+  // A station with a centre store that is down and an LRS that is up: finishing the exercise
+  // (a click on the button) queues the session in the outbox, sends the statement, and the
+  // status bar says both in words.
+  void aFinishedExerciseIsUploadedAndTheStatusBarSaysHow() {
+    LoopbackLrs lrs;
+    QTemporaryDir config;
+    qputenv("XDG_CONFIG_HOME", config.path().toLocal8Bit());  // no config files of the user's
+    qputenv("PALPA_LRS", lrs.endpoint().toLocal8Bit());
+    qputenv("PALPA_STORE", "host=127.0.0.1 port=1 dbname=palpa connect_timeout=2");  // nothing listens there
+    palpa::gui::AppWindows app({"ui-upload", 3, {}, {}});
+    auto* window = qobject_cast<palpa::ui::TraineeWindow*>(app.open_trainee(kDefaultCase));
+    QVERIFY2(window, qPrintable(app.last_error()));
+    QVERIFY(QTest::qWaitForWindowExposed(window));
+    auto* state = window->findChild<QLabel*>("uploadState");
+    QVERIFY(state);
+    QVERIFY(!state->isVisible());
+    QPushButton* finish = nullptr;
+    for (auto* b : window->findChildren<QPushButton*>()) {
+      if (b->text().startsWith("Finish")) finish = b;
+    }
+    QVERIFY(finish);
+    QTest::qWait(300);  // a few hundred ticks recorded
+    QTest::mouseClick(finish, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(state->isVisible(), 20000);
+    QVERIFY2(state->text().contains("Centre store: 1 waiting in the outbox"), qPrintable(state->text()));
+    QVERIFY2(state->text().contains("Learning record store: sent."), qPrintable(state->text()));
+    QCOMPARE(lrs.requests.size(), 1);
+    QVERIFY2(lrs.requests[0].startsWith("PUT /xapi/statements?statementId="), qPrintable(lrs.requests[0]));
+    // The session waits in the store outbox as a copy; the station's own file is untouched.
+    const QDir outbox(sessions_.path() + "/palpa/outbox");
+    QCOMPARE(outbox.entryList({"*.palpa"}, QDir::Files).size(), 1);
+    QVERIFY(QFile::exists(QString::fromStdString(window->exercise().session_path().string())));
+    qunsetenv("PALPA_LRS");
+    qunsetenv("PALPA_STORE");
   }
 
   void badFilesAreRefusedWithOneLineNamingThem() {

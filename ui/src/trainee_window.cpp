@@ -180,6 +180,10 @@ void TraineeWindow::build_status_bar() {
   status_fps_->setToolTip(tr("Frames drawn in the last second: a view that does not change is redrawn only four times a second"));
   statusBar()->addWidget(status_loop_, 1);
   statusBar()->addPermanentWidget(status_fps_);
+  status_upload_ = new QLabel(this);
+  status_upload_->setObjectName("uploadState");
+  status_upload_->setVisible(false);
+  statusBar()->addPermanentWidget(status_upload_);
 
 }
 
@@ -288,6 +292,7 @@ void TraineeWindow::finish() {
   }
   finish_button_->setEnabled(false);
   remove_button_->setEnabled(false);
+  emit session_ended(QString::fromStdString(exercise_->session_path().string()), true);
   reveal(*score_);
   score_card_ = new ScoreCard(*score_, QString::fromStdString(exercise_->session_path().string()), this);
   score_card_->setAttribute(Qt::WA_DeleteOnClose, false);
@@ -481,6 +486,12 @@ bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
   }
 }
 
+void TraineeWindow::show_upload_state(const QString& text) {
+  status_upload_->setText(text);
+  status_upload_->setToolTip(text);
+  status_upload_->setVisible(!text.isEmpty());
+}
+
 void TraineeWindow::closeEvent(QCloseEvent* event) {
   if (exercise_->started() && !exercise_->finished()) {
     // A signal or the application quitting closes without a question: the attempt ends
@@ -508,6 +519,7 @@ void TraineeWindow::closeEvent(QCloseEvent* event) {
         }
         break;
     }
+    emit session_ended(QString::fromStdString(exercise_->session_path().string()), false);
   }
   timer_.stop();
   QMainWindow::closeEvent(event);

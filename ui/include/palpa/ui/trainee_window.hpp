@@ -86,7 +86,15 @@ class TraineeWindow : public QMainWindow {
   /// loop is idle; a negative value stops the timer (a driver then calls frame() itself).
   void set_frame_interval(int ms);
 
+ signals:
+  /// The session file is finished and closed (scored or not: `scored` says): it may be
+  /// uploaded now. Emitted once per exercise, also when the window closes.
+  void session_ended(const QString& session_path, bool scored);
+
  public slots:
+  /// The state of the finished session's upload, in words, in the status bar (objectName
+  /// "uploadState"); empty hides it.
+  void show_upload_state(const QString& text);
   /// The pointer is at `pos` (view pixels): pick the body there and press at the depth set.
   void palpate_at(const QPoint& pos);
   /// Steps the pressure (level mode: one of nine settings; force mode: 1 N).
@@ -129,6 +137,7 @@ class TraineeWindow : public QMainWindow {
   QPushButton* finish_button_ = nullptr;
   QLabel* status_loop_ = nullptr;
   QLabel* status_fps_ = nullptr;
+  QLabel* status_upload_ = nullptr;
   ScoreCard* score_card_ = nullptr;
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
   vtkSmartPointer<vtkRenderer> renderer_;
