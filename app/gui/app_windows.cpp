@@ -46,7 +46,11 @@ QString file_name(const QString& path) { return QString::fromStdString(std::file
 
 std::filesystem::path default_session_path() { return ui::new_session_path(ui::sessions_dir(), "trainee"); }
 
-AppWindows::AppWindows(TraineeSettings settings) : settings_(std::move(settings)) {}
+AppWindows::AppWindows(TraineeSettings settings) : settings_(std::move(settings)) {
+  // libpq waits for an unroutable store without limit; an upload must end (and let the
+  // application quit). A timeout the user set (PGCONNECT_TIMEOUT, or in PALPA_STORE) wins.
+  if (qEnvironmentVariableIsEmpty("PGCONNECT_TIMEOUT")) qputenv("PGCONNECT_TIMEOUT", "10");
+}
 
 AppWindows::~AppWindows() {
   for (QThread* t : uploads_) {
