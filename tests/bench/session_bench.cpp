@@ -1,5 +1,6 @@
 // Session file throughput: samples appended per second (with a commit every 250 samples,
-// as the recorder does at 1 kHz), samples read per second, and bytes per sample.
+// as the recorder does at 1 kHz), the finish (format 2: compacting the rows into blocks),
+// samples read per second, and bytes per sample, for format 1 (rows) and 2 (blocks).
 //   cmake --build build/release --target session_bench && build/release/tests/session_bench
 #include <benchmark/benchmark.h>
 #include <stdlib.h>
@@ -59,12 +60,12 @@ const std::vector<engine::Sample>& trace(std::int64_t n) {
   return samples;
 }
 
-std::filesystem::path write_file(const std::string& name, std::int64_t n, std::int64_t commit_every,
+std::filesystem::path write_file(const std::string& name, std::int64_t n, std::int64_t commit_every, int format,
                                  benchmark::State* state) {
   const auto path = scratch_dir() / name;
   std::filesystem::remove(path);
   const auto& samples = trace(n);
-  session::SessionWriter writer(path, info());
+  session::SessionWriter writer(path, info(), session::WriterOptions{format});
   if (state != nullptr) state->ResumeTiming();
   for (std::int64_t k = 0; k < n; ++k) {
     writer.append(samples[static_cast<std::size_t>(k)]);
@@ -81,7 +82,7 @@ void BM_SessionAppend(benchmark::State& state) {
   std::uintmax_t bytes = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    const auto path = write_file("append.palpa", n, state.range(1), &state);
+    const auto path = write_file("append.palpa", n, state.range(1), static_cast<int>(state.range(2)), &state);
     bytes = std::filesystem::file_size(path);
     state.ResumeTiming();
   }
@@ -89,12 +90,42 @@ void BM_SessionAppend(benchmark::State& state) {
   state.counters["bytes_per_sample"] = static_cast<double>(bytes) / static_cast<double>(n);
   state.counters["MB_per_minute_at_1kHz"] = static_cast<double>(bytes) / static_cast<double>(n) * 60000.0 / 1e6;
 }
-// 60000 samples: a minute at 1 kHz; committing every 250 samples, or only at the end.
-BENCHMARK(BM_SessionAppend)->Args({60000, 250})->Args({60000, 60000})->Unit(benchmark::kMillisecond)->UseRealTime();
+// 60000 samples: a minute at 1 kHz; committing every 250 samples, or only at the end; the
+// third argument is the format finish() leaves (the size counters are that file's). Five
+// minutes (300000) for the size of a whole exam.
+BENCHMARK(BM_SessionAppend)
+    ->Args({60000, 250, 1})
+    ->Args({60000, 60000, 1})
+    ->Args({60000, 250, 2})
+    ->Args({300000, 250, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// finish() alone: format 1 checkpoints and leaves WAL mode; format 2 also compacts the rows
+// into blocks and vacuums.
+void BM_SessionFinish(benchmark::State& state) {
+  const std::int64_t n = state.range(0);
+  const auto& samples = trace(n);
+  for (auto _ : state) {
+    state.PauseTiming();
+    const auto path = scratch_dir() / "finish.palpa";
+    std::filesystem::remove(path);
+    session::SessionWriter writer(path, info(), session::WriterOptions{static_cast<int>(state.range(1))});
+    for (std::int64_t k = 0; k < n; ++k) {
+      writer.append(samples[static_cast<std::size_t>(k)]);
+      if (k % 250 == 249) writer.commit();
+    }
+    writer.commit();
+    state.ResumeTiming();
+    writer.finish();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+}
+BENCHMARK(BM_SessionFinish)->Args({60000, 1})->Args({60000, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_SessionRead(benchmark::State& state) {
   const std::int64_t n = state.range(0);
-  const auto path = write_file("read.palpa", n, 250, nullptr);
+  const auto path = write_file("read.palpa", n, 250, static_cast<int>(state.range(1)), nullptr);
   for (auto _ : state) {
     const auto s = session::read_session(path);
     if (static_cast<std::int64_t>(s.samples.size()) != n) state.SkipWithError("wrong sample count");
@@ -102,7 +133,7 @@ void BM_SessionRead(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * n);
 }
-BENCHMARK(BM_SessionRead)->Arg(60000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SessionRead)->Args({60000, 1})->Args({60000, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/json_text.hpp"
 #include "hot_journal.hpp"
+#include "sample_blocks.hpp"
 #include "sqlite_util.hpp"
 
 namespace palpa::session {
@@ -44,11 +45,19 @@ class Reader {
   void refuse_empty_without_wal(const Session& session);
   void open();
   void check_identity();
+  void read_format_version();
+  void check_tables();
   void check_schema();
   bool has_table(const char* name);
   void read_meta(Session& session);
   void read_events(Session& session);
   void read_samples(Session& session, std::int64_t max_samples);
+  void read_blocks(Session& session, std::int64_t max_samples);
+  std::int64_t count_samples(const char* sql, std::int64_t max_samples);
+  template <typename Where>
+  void check_contact(engine::Sample& s, const Where& where) const;
+  template <typename Where>
+  void check_time(double t, double previous_t, const Where& where) const;
 
   detail::Statement prepare(const std::string& where, const char* sql) {
     try {
@@ -70,6 +79,7 @@ class Reader {
   bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
   detail::JournalBeside journal_ = detail::JournalBeside::None;
   sqlite3* db_ = nullptr;
+  int version_ = 1;  // meta format_version: 1 (samples rows) or 2 (sample_blocks)
   std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
   std::vector<double> thickness_;  // m, per body: 2 x its largest radius, the deepest press it has
 };
@@ -89,7 +99,8 @@ bool Reader::wal_files_missing() const { return wal_header_ && wal_absent_; }
 // first commit): say so rather than read it as a session in which nothing happened.
 void Reader::refuse_empty_without_wal(const Session& session) {
   if (!wal_files_missing() || session.complete) return;
-  auto any = prepare("samples", "SELECT EXISTS(SELECT 1 FROM samples)");
+  auto any = prepare("samples", version_ >= 2 ? "SELECT EXISTS(SELECT 1 FROM sample_blocks)"
+                                              : "SELECT EXISTS(SELECT 1 FROM samples)");
   if (step(any, "samples") && sqlite3_column_int(any.get(), 0) != 0) return;
   fail("file",
        "recorded in WAL mode and holds no samples without its -wal: keep its -wal and -shm beside it "
@@ -179,7 +190,7 @@ void Reader::check_identity() {
     fail("application_id", "not a Palpa session (application_id is " + hex32(id) + ", a session has " +
                                hex32(static_cast<std::uint32_t>(detail::kApplicationId)) + " 'PALP')");
   }
-  for (const char* table : {"meta", "samples", "events"}) {
+  for (const char* table : {"meta", "events"}) {
     if (!has_table(table)) fail(table, "table is missing");
   }
   // Palpa writes no views or triggers; one in a session is a hand-made or hostile file.
@@ -195,6 +206,41 @@ void Reader::check_identity() {
   }
 }
 
+// The format version decides which tables the file must have, so it is read first (after
+// the meta table is known to exist): a newer format is refused before anything else.
+void Reader::read_format_version() {
+  auto query = prepare("meta", "SELECT key, value FROM meta WHERE key IN ('format', 'format_version')");
+  std::string format, version_text;
+  bool has_format = false, has_version = false;
+  while (step(query, "meta")) {
+    const auto* key = sqlite3_column_text(query.get(), 0);
+    const auto* value = sqlite3_column_text(query.get(), 1);
+    if (key == nullptr) continue;
+    if (value == nullptr) fail(std::string("meta ") + reinterpret_cast<const char*>(key), "no value (NULL)");
+    const bool is_format = std::string_view(reinterpret_cast<const char*>(key)) == "format";
+    (is_format ? has_format : has_version) = true;
+    (is_format ? format : version_text) = reinterpret_cast<const char*>(value);
+  }
+  if (!has_format) fail("meta format", "missing");
+  if (format != kFormat) fail("meta format", "not a Palpa session (format is '" + format + "')");
+  if (!has_version) fail("meta format_version", "missing");
+  const char* end = version_text.data() + version_text.size();
+  const auto parsed = std::from_chars(version_text.data(), end, version_);
+  if (parsed.ec != std::errc() || parsed.ptr != end || version_text.empty()) {
+    fail("meta format_version", "not an integer: '" + version_text + "'");
+  }
+  if (version_ > kFormatVersion) {
+    fail("meta format_version",
+         fmt::format("format version {} is newer than this Palpa reads ({})", version_, kFormatVersion));
+  }
+  if (version_ < 1) fail("meta format_version", fmt::format("format version {} does not exist", version_));
+}
+
+void Reader::check_tables() {
+  const char* samples = version_ >= 2 ? "sample_blocks" : "samples";
+  if (!has_table(samples)) fail(samples, "table is missing");
+}
+
 // Exactly the documented schema, compared before a row is read: an extra table, index,
 // view or trigger, a changed column or a generated one (which SQLite would evaluate on
 // reading it, at whatever cost the file's author chose) is refused, naming the first
@@ -206,7 +252,7 @@ void Reader::check_schema() {
   } catch (const std::runtime_error&) {
     fail_sqlite("file", sqlite3_extended_errcode(db_));
   }
-  const std::string& expected = detail::expected_schema_fingerprint();
+  const std::string& expected = detail::expected_schema_fingerprint(version_);
   if (found == expected) return;
   const auto lines = [](const std::string& text) {
     std::vector<std::string> out;
@@ -254,17 +300,7 @@ void Reader::read_meta(Session& session) {
     return it->second;
   };
 
-  if (get("format") != kFormat) fail("meta format", "not a Palpa session (format is '" + get("format") + "')");
-  int version = 0;
-  if (!parse_number(get("format_version"), version)) {
-    fail("meta format_version", "not an integer: '" + get("format_version") + "'");
-  }
-  if (version > kFormatVersion) {
-    fail("meta format_version",
-         fmt::format("format version {} is newer than this Palpa reads ({})", version, kFormatVersion));
-  }
-  if (version < 1) fail("meta format_version", fmt::format("format version {} does not exist", version));
-
+  session.format_version = version_;  // checked by read_format_version()
   auto& info = session.info;
   info.id = get("id");
   info.trainee = get("trainee");
@@ -378,21 +414,57 @@ void Reader::read_events(Session& session) {
 constexpr double kParameterSlack = 1e-9;
 constexpr double kDepthSlack = 1e-6;  // m
 
+// The sample count as the file declares it, refused beyond `max_samples` before a value
+// is read. Capped for the reservation (about 4 million ticks, 70 minutes at 1 kHz): a
+// hostile count must not make the reservation itself fail; a longer session grows the
+// vector as it reads.
+std::int64_t Reader::count_samples(const char* sql, std::int64_t max_samples) {
+  auto count = prepare("samples", sql);
+  if (!step(count, "samples")) return 0;
+  const auto rows = std::max<sqlite3_int64>(0, sqlite3_column_int64(count.get(), 0));
+  if (rows > max_samples) {
+    fail("samples", fmt::format("{} rows: more than a session may hold ({}; 72000000 is 20 hours at 1 kHz)", rows,
+                                max_samples));
+  }
+  return std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22);
+}
+
+template <typename Where>
+void Reader::check_time(double t, double previous_t, const Where& where) const {
+  if (t < previous_t) {
+    throw SessionError(file_, where("t"),
+                       "time goes backwards (" + detail::exact_text(t) + " s after " + detail::exact_text(previous_t) +
+                           " s)");
+  }
+}
+
+// In the format's ranges (docs/session-format.md): parameters in [0, 1], a press no deeper
+// than the body is thick (a hostile value would send scoring out of bounds).
+template <typename Where>
+void Reader::check_contact(engine::Sample& s, const Where& where) const {
+  for (const auto& [value, name] : {std::pair{s.u, "u"}, std::pair{s.v, "v"}}) {
+    if (!(value >= -kParameterSlack && value <= 1.0 + kParameterSlack)) {
+      throw SessionError(file_, where(name), "outside [0, 1]: " + detail::exact_text(value));
+    }
+  }
+  s.u = std::clamp(s.u, 0.0, 1.0);
+  s.v = std::clamp(s.v, 0.0, 1.0);
+  const double thickness = thickness_[static_cast<std::size_t>(s.body)];
+  const double deepest = thickness * (1.0 + 1e-6) + kDepthSlack;
+  if (!(s.depth >= -kDepthSlack && s.depth <= deepest)) {
+    throw SessionError(file_, where("depth"),
+                       "outside [0, " + detail::exact_text(thickness) + "] m, the body's thickness: " +
+                           detail::exact_text(s.depth));
+  }
+}
+
 void Reader::read_samples(Session& session, std::int64_t max_samples) {
   static constexpr const char* kColumns =
       "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
-  if (auto count = prepare("samples", "SELECT count(*) FROM samples"); step(count, "samples")) {
-    // Capped (about 4 million ticks, 70 minutes at 1 kHz): a hostile count must not make
-    // the reservation itself fail; a longer session grows the vector as it reads.
-    const auto rows = std::max<sqlite3_int64>(0, sqlite3_column_int64(count.get(), 0));
-    if (rows > max_samples) {
-      fail("samples", fmt::format("{} rows: more than a session may hold ({}; 72000000 is 20 hours at 1 kHz)", rows,
-                                  max_samples));
-    }
-    session.samples.reserve(static_cast<std::size_t>(std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22)));
-  }
+  session.samples.reserve(static_cast<std::size_t>(count_samples("SELECT count(*) FROM samples", max_samples)));
   auto query = prepare("samples", (std::string(kColumns) + " ORDER BY tick").c_str());
   Row row{file_, query.get(), "samples", "tick"};
+  const auto where_in_row = [&row](const char* column) { return row.where(column); };
   const auto max_body = static_cast<std::int64_t>(bodies_) - 1;
   std::int64_t previous_tick = -1;
   double previous_t = -std::numeric_limits<double>::infinity();
@@ -408,11 +480,7 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
     row.integer(0, "tick", previous_tick + 1, kInt64Max);
     engine::Sample s;
     s.t = row.real(1, "t");
-    if (s.t < previous_t) {
-      throw SessionError(file_, row.where("t"),
-                         "time goes backwards (" + detail::exact_text(s.t) + " s after " +
-                             detail::exact_text(previous_t) + " s)");
-    }
+    check_time(s.t, previous_t, where_in_row);
     s.position = {row.real(2, "x"), row.real(3, "y"), row.real(4, "z")};
     s.force = {row.real(5, "fx"), row.real(6, "fy"), row.real(7, "fz")};
     if (!row.is_null(8)) {
@@ -421,21 +489,7 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
       s.u = row.real(9, "u");
       s.v = row.real(10, "v");
       s.depth = row.real(11, "depth");
-      // In the format's ranges (docs/session-format.md): parameters in [0, 1], a press no
-      // deeper than the body is thick (a hostile value would send scoring out of bounds).
-      for (const auto& [value, name] : {std::pair{s.u, "u"}, std::pair{s.v, "v"}}) {
-        if (!(value >= -kParameterSlack && value <= 1.0 + kParameterSlack)) {
-          throw SessionError(file_, row.where(name), "outside [0, 1]: " + detail::exact_text(value));
-        }
-      }
-      s.u = std::clamp(s.u, 0.0, 1.0);
-      s.v = std::clamp(s.v, 0.0, 1.0);
-      const double deepest = thickness_[static_cast<std::size_t>(s.body)] * (1.0 + 1e-6) + kDepthSlack;
-      if (!(s.depth >= -kDepthSlack && s.depth <= deepest)) {
-        throw SessionError(file_, row.where("depth"),
-                           "outside [0, " + detail::exact_text(thickness_[static_cast<std::size_t>(s.body)]) +
-                               "] m, the body's thickness: " + detail::exact_text(s.depth));
-      }
+      check_contact(s, where_in_row);
     }
     s.buttons = static_cast<std::uint32_t>(row.integer(12, "buttons", 0, std::numeric_limits<std::uint32_t>::max()));
     s.overrun = row.integer(13, "overrun", 0, 1) != 0;
@@ -443,6 +497,52 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
     previous_tick = row.key;
     previous_t = s.t;
     session.samples.push_back(s);
+  }
+}
+
+// Format 2: blocks in tick order, each decoded (sample_blocks.hpp) and its ticks checked
+// like format 1's rows. A block's messages name it: "sample_blocks first_tick 2048: ...".
+void Reader::read_blocks(Session& session, std::int64_t max_samples) {
+  session.samples.reserve(
+      static_cast<std::size_t>(count_samples("SELECT total(count) FROM sample_blocks", max_samples)));
+  auto query = prepare("sample_blocks", "SELECT first_tick, count, data FROM sample_blocks ORDER BY first_tick");
+  Row row{file_, query.get(), "sample_blocks", "first_tick"};
+  std::vector<std::int64_t> ticks;
+  std::int64_t previous_tick = -1, tick = 0;
+  double previous_t = -std::numeric_limits<double>::infinity();
+  const auto where_in_block = [&](const char* column) {
+    return fmt::format("sample_blocks first_tick {}: tick {}: column {}", row.key, tick, column);
+  };
+  while (step(query, "sample_blocks")) {
+    row.key = sqlite3_column_int64(query.get(), 0);
+    const std::int64_t count = row.integer(1, "count", 1, detail::kMaxBlockTicks);
+    if (static_cast<std::int64_t>(session.samples.size()) + count > max_samples) {
+      fail("sample_blocks", fmt::format("more samples than a session may hold ({})", max_samples));
+    }
+    if (sqlite3_column_type(query.get(), 2) != SQLITE_BLOB) fail(row.where("data"), "not a blob");
+    const std::size_t first = session.samples.size();
+    ticks.clear();
+    try {
+      detail::decode_block(sqlite3_column_blob(query.get(), 2), static_cast<std::size_t>(sqlite3_column_bytes(query.get(), 2)),
+                           count, ticks, session.samples);
+    } catch (const std::runtime_error& e) {
+      fail(row.where(nullptr), e.what());
+    }
+    if (ticks.front() != row.key) fail(row.where(nullptr), fmt::format("its first tick is {}", ticks.front()));
+    for (std::size_t k = 0; k < ticks.size(); ++k) {
+      tick = ticks[k];
+      auto& s = session.samples[first + k];
+      if (tick <= previous_tick) fail(where_in_block("tick"), fmt::format("not after tick {}", previous_tick));
+      check_time(s.t, previous_t, where_in_block);
+      if (s.body >= 0) {
+        if (static_cast<std::size_t>(s.body) >= bodies_) {
+          fail(where_in_block("body"), fmt::format("the case has {} bodies, there is no body {}", bodies_, s.body));
+        }
+        check_contact(s, where_in_block);
+      }
+      previous_tick = tick;
+      previous_t = s.t;
+    }
   }
 }
 
@@ -454,18 +554,20 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
   std::string error;
   if (const int rc = detail::exec(db_, "BEGIN", error); rc != SQLITE_OK) fail_sqlite("file", rc);
   check_identity();
+  read_format_version();
+  check_tables();
   check_schema();
   Session session;
   read_meta(session);
   read_events(session);
   refuse_empty_without_wal(session);
   if (options.samples) {
-    read_samples(session, options.max_samples);
-  } else {
-    // Still check the table has the columns a reader needs.
-    prepare("samples",
-            "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples LIMIT 0");
-  }
+    if (version_ >= 2) {
+      read_blocks(session, options.max_samples);
+    } else {
+      read_samples(session, options.max_samples);
+    }
+  }  // without the samples: their table's columns were checked with the schema
   if (const int rc = detail::exec(db_, "COMMIT", error); rc != SQLITE_OK) fail_sqlite("file", rc);
   return session;
 }

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "checks.hpp"
+#include "compaction.hpp"
 #include "file_claim.hpp"
 #include "palpa/io/case_file.hpp"
 #include "sqlite_util.hpp"
@@ -117,8 +118,8 @@ void write_header(const std::filesystem::path& building, const std::string& file
   sqlite3* db = owner.get();
   std::string error;
   const std::string schema =
-      fmt::format("PRAGMA synchronous=FULL; BEGIN; PRAGMA application_id={}; PRAGMA user_version={};{}",
-                  detail::kApplicationId, kFormatVersion, detail::kSchema);
+      fmt::format("PRAGMA synchronous=FULL; BEGIN; PRAGMA application_id={}; PRAGMA user_version=1;{}",
+                  detail::kApplicationId, detail::schema_of(1));
   if (detail::exec(db, schema.c_str(), error) != SQLITE_OK) throw SessionError(file, "schema", error);
 
   detail::Statement meta(db, "INSERT INTO meta(key, value) VALUES(?, ?)");
@@ -130,7 +131,7 @@ void write_header(const std::filesystem::path& building, const std::string& file
     if (step != SQLITE_DONE) throw SessionError(file, std::string("meta ") + key, sqlite3_errmsg(db));
   };
   put("format", std::string(kFormat));
-  put("format_version", fmt::format("{}", kFormatVersion));
+  put("format_version", "1");  // rows while recording; finish() compacts into format 2
   put("id", info.id.empty() ? random_id() : info.id);
   put("trainee", info.trainee);
   put("device", info.device);
@@ -219,7 +220,11 @@ bool leave_write_ahead_logging(sqlite3* db, int attempts, std::string& error) {
 
 }  // namespace
 
-SessionWriter::SessionWriter(const std::filesystem::path& path, const SessionInfo& info) : path_(path) {
+SessionWriter::SessionWriter(const std::filesystem::path& path, const SessionInfo& info, const WriterOptions& options)
+    : path_(path), options_(options) {
+  if (options.format_version != 1 && options.format_version != 2) {
+    throw SessionError(path.string(), "format_version", fmt::format("{} (1 or 2)", options.format_version));
+  }
   const std::string file = path.string();
   const CheckedInfo checked = validate(file, info);
   detail::refuse_taken_name(path);
@@ -443,10 +448,12 @@ void SessionWriter::finish() {
   sqlite3_finalize(insert_event_);
   insert_sample_ = nullptr;
   insert_event_ = nullptr;
+  if (options_.format_version >= 2) compact();
   // Everything is committed. With a reader open the session stays in WAL mode, complete,
   // which is a warning and not an error.
   if (!leave_write_ahead_logging(db_, 3, error)) {
-    warning_ = file;
+    if (!warning_.empty()) warning_ += "; ";
+    warning_ += file;
     warning_ += ": finish: left in write-ahead-log mode (keep its -wal and -shm beside it): ";
     warning_ += "another program has the session open";
     if (!error.empty()) {
@@ -459,8 +466,20 @@ void SessionWriter::finish() {
   db_ = nullptr;
 }
 
-void write_session(const std::filesystem::path& path, const Session& session) {
-  SessionWriter writer(path, session.info);
+// Format 2, in its own transaction after everything is committed as rows: a kill during it
+// leaves the format-1 file; one that cannot be made is a warning, never a loss.
+void SessionWriter::compact() {
+  try {
+    if (const std::string not_vacuumed = detail::compact_samples(db_); !not_vacuumed.empty()) {
+      warning_ = path_.string() + ": finish: format 2, not shrunk (" + not_vacuumed + ")";
+    }
+  } catch (const std::runtime_error& e) {
+    warning_ = path_.string() + ": finish: kept in format 1 (" + e.what() + ")";
+  }
+}
+
+void write_session(const std::filesystem::path& path, const Session& session, const WriterOptions& options) {
+  SessionWriter writer(path, session.info, options);
   for (const auto& sample : session.samples) writer.append(sample);
   for (const auto& event : session.events) writer.event(event);
   if (!session.loop_stats.is_null()) writer.set_loop_stats(session.loop_stats);

@@ -53,21 +53,32 @@ std::string schema_fingerprint(sqlite3* db) {
   return out;
 }
 
-const std::string& expected_schema_fingerprint() {
-  static const std::string expected = [] {
-    sqlite3* db = nullptr;
-    if (sqlite3_open_v2(":memory:", &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
-      sqlite3_close_v2(db);
-      throw std::runtime_error("cannot open an in-memory database");
-    }
-    std::string error;
-    std::string fingerprint;
-    if (exec(db, kSchema, error) == SQLITE_OK) fingerprint = schema_fingerprint(db);
+std::string schema_of(int version) {
+  return std::string(kMetaAndEventsTables) + (version >= 2 ? kSampleBlocksTable : kSamplesTable);
+}
+
+namespace {
+
+std::string fingerprint_of_schema(int version) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(":memory:", &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
     sqlite3_close_v2(db);
-    if (fingerprint.empty()) throw std::runtime_error("the session schema does not build: " + error);
-    return fingerprint;
-  }();
-  return expected;
+    throw std::runtime_error("cannot open an in-memory database");
+  }
+  std::string error;
+  std::string fingerprint;
+  if (exec(db, schema_of(version).c_str(), error) == SQLITE_OK) fingerprint = schema_fingerprint(db);
+  sqlite3_close_v2(db);
+  if (fingerprint.empty()) throw std::runtime_error("the session schema does not build: " + error);
+  return fingerprint;
+}
+
+}  // namespace
+
+const std::string& expected_schema_fingerprint(int version) {
+  static const std::string v1 = fingerprint_of_schema(1);
+  static const std::string v2 = fingerprint_of_schema(2);
+  return version >= 2 ? v2 : v1;
 }
 
 Statement& Statement::operator=(Statement&& other) noexcept {

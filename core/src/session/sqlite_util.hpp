@@ -12,12 +12,24 @@ namespace palpa::session::detail {
 /// PRAGMA application_id of every session file: the bytes 'PALP'.
 inline constexpr std::int32_t kApplicationId = 0x50414C50;
 
-/// The tables of format version 1 (created by the writer, checked by the reader).
-inline constexpr const char* kSchema = R"sql(
+/// The tables every format version has.
+inline constexpr const char* kMetaAndEventsTables = R"sql(
 CREATE TABLE meta(
   key TEXT PRIMARY KEY,
   value TEXT NOT NULL
 );
+CREATE TABLE events(
+  id INTEGER PRIMARY KEY,
+  t REAL NOT NULL,
+  kind TEXT NOT NULL CHECK(kind IN ('start','mark','unmark','pause','resume','end')),
+  mark INTEGER,
+  x REAL, y REAL, z REAL,
+  note TEXT NOT NULL DEFAULT ''
+);
+)sql";
+
+/// Format 1 (and a session being recorded): one row per tick.
+inline constexpr const char* kSamplesTable = R"sql(
 CREATE TABLE samples(
   tick INTEGER PRIMARY KEY,
   t REAL NOT NULL,
@@ -29,15 +41,19 @@ CREATE TABLE samples(
   overrun INTEGER NOT NULL,
   fault INTEGER NOT NULL
 );
-CREATE TABLE events(
-  id INTEGER PRIMARY KEY,
-  t REAL NOT NULL,
-  kind TEXT NOT NULL CHECK(kind IN ('start','mark','unmark','pause','resume','end')),
-  mark INTEGER,
-  x REAL, y REAL, z REAL,
-  note TEXT NOT NULL DEFAULT ''
+)sql";
+
+/// Format 2: the ticks compacted into blocks (sample_blocks.hpp).
+inline constexpr const char* kSampleBlocksTable = R"sql(
+CREATE TABLE sample_blocks(
+  first_tick INTEGER PRIMARY KEY,
+  count INTEGER NOT NULL,
+  data BLOB NOT NULL
 );
 )sql";
+
+/// The tables of format `version` (1 or 2), as created by the writer and checked by the reader.
+std::string schema_of(int version);
 
 /// A prepared statement, finalized on destruction.
 class Statement {
@@ -76,8 +92,9 @@ std::string query_text(sqlite3* db, const char* sql);
 /// std::runtime_error(errmsg).
 std::string schema_fingerprint(sqlite3* db);
 
-/// schema_fingerprint of kSchema itself (built once in memory): what a session must have.
-const std::string& expected_schema_fingerprint();
+/// schema_fingerprint of schema_of(version) itself (built once in memory): what a session of
+/// that format version must have.
+const std::string& expected_schema_fingerprint(int version);
 
 /// Doubles as text that reads back to the same bits (shortest round-trip form).
 std::string exact_text(double value);

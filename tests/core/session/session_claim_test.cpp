@@ -236,7 +236,8 @@ TEST(SessionClaim, AKillDuringTheSwitchOutOfWriteAheadLoggingLeavesAReadableSess
   for (int pass = 0; pass < 2; ++pass) {  // read as it is, and left as it is
     const Session s = read_session(path);
     ASSERT_EQ(s.samples.size(), 40u);
-    EXPECT_TRUE(test::same_sample(s.samples[39], test::sample_at(39)));
+    EXPECT_EQ(s.format_version, 2);  // compacted before the switch
+    EXPECT_TRUE(test::near_sample(s.samples[39], test::sample_at(39)));
   }
   EXPECT_EQ(std::filesystem::file_size(path.string() + "-journal"), before);
 

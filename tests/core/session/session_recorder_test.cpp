@@ -70,8 +70,10 @@ TEST(SessionRecorder, RecordsEveryTickOfALiveLoopWithEventsAndStatistics) {
   EXPECT_EQ(loop.dropped_samples(), 0u);
   ASSERT_EQ(s.samples.size(), stats.ticks() - loop.dropped_samples());
   ASSERT_GT(s.samples.size(), 30u);  // 0.3 s at 1 kHz, even on a loaded machine
-  EXPECT_EQ(query_int(path, "SELECT min(tick) FROM samples"), 0);
-  EXPECT_EQ(query_int(path, "SELECT max(tick) FROM samples"), static_cast<std::int64_t>(s.samples.size()) - 1);
+  // Finished: compacted into format 2's blocks, every tick from 0 on.
+  EXPECT_EQ(s.format_version, 2);
+  EXPECT_EQ(query_int(path, "SELECT min(first_tick) FROM sample_blocks"), 0);
+  EXPECT_EQ(query_int(path, "SELECT sum(count) FROM sample_blocks"), static_cast<std::int64_t>(s.samples.size()));
   for (std::size_t k = 1; k < s.samples.size(); ++k) ASSERT_GT(s.samples[k].t, s.samples[k - 1].t) << k;
   bool pressed = false;
   for (const auto& sample : s.samples) pressed = pressed || (sample.body == 0 && sample.depth > 0.0);

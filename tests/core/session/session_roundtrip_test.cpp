@@ -72,7 +72,7 @@ TEST(SessionFile, EverythingWrittenIsReadBackExactly) {
 
   const std::uint64_t n = 3000;
   {
-    SessionWriter writer(path, info);
+    SessionWriter writer(path, info, test::kRows);
     EXPECT_EQ(writer.path(), path);
     writer.event(make_event(0.0, EventKind::Start, -1, {}, "begin"));
     for (std::uint64_t k = 0; k < n; ++k) {
@@ -157,7 +157,7 @@ TEST(SessionFile, WithoutSeedOrStatsTheyReadBackAbsent) {
   session.info.started_at.clear();  // likewise (now, UTC)
   session.samples = {sample_at(1), sample_at(2)};
   session.events = {make_event(0.0, EventKind::Start)};
-  write_session(dir / "a.palpa", session);
+  write_session(dir / "a.palpa", session, test::kRows);
   const auto s = read_session(dir / "a.palpa");
   EXPECT_FALSE(s.info.seed.has_value());
   EXPECT_TRUE(s.loop_stats.is_null());
@@ -171,7 +171,7 @@ TEST(SessionFile, WithoutSeedOrStatsTheyReadBackAbsent) {
   // write_session keeps the loop statistics given as JSON.
   session.loop_stats = {{"ticks", 2}, {"missed", 0}};
   session.events.push_back(make_event(0.5, EventKind::End));
-  write_session(dir / "b.palpa", session);
+  write_session(dir / "b.palpa", session, test::kRows);
   const auto b = read_session(dir / "b.palpa");
   EXPECT_EQ(b.loop_stats, session.loop_stats);
   EXPECT_TRUE(b.complete);
@@ -319,7 +319,7 @@ TEST(SessionWriter, RefusesTimeGoingBackwardsAndBodiesTheCaseDoesNotHave) {
 TEST(SessionWriter, AppendRepairingStoresBadTicksAsFaultsInsteadOfRefusingThem) {
   ScratchDir dir;
   const auto path = dir / "s.palpa";
-  SessionWriter writer(path, flat_case_info());
+  SessionWriter writer(path, flat_case_info(), test::kRows);
   EXPECT_TRUE(writer.append_repairing(sample_at(1)));  // tick 1: in contact, t = 0.001
   auto s = sample_at(2);
   s.fault = false;

@@ -14,6 +14,7 @@
 #include "palpa/engine/engine.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/session/session.hpp"
+#include "palpa/session/session_writer.hpp"
 
 namespace palpa::session::test {
 
@@ -69,6 +70,21 @@ inline engine::Sample sample_at(std::uint64_t k) {
   s.overrun = k % 7 == 0;
   s.fault = k % 11 == 0;
   return s;
+}
+
+/// Format 1: one row per tick, every double read back to the bit (what the exactness tests
+/// and the tests that edit the samples table by hand need).
+inline const WriterOptions kRows{1};
+
+/// True when a is b as format 2 stores it: each value within half its unit (1 us, 1 um,
+/// 1 mN, 1e-6), the integers and flags the same (docs/session-format.md).
+inline bool near_sample(const engine::Sample& a, const engine::Sample& b) {
+  const auto near = [](double x, double y, double unit) { return std::fabs(x - y) <= unit / 2 * (1 + 1e-9); };
+  bool same = near(a.t, b.t, 1e-6) && a.body == b.body && a.buttons == b.buttons && a.overrun == b.overrun &&
+              a.fault == b.fault;
+  for (std::size_t i = 0; i < 3; ++i) same = same && near(a.position[i], b.position[i], 1e-6) && near(a.force[i], b.force[i], 1e-3);
+  if (a.body >= 0) same = same && near(a.u, b.u, 1e-6) && near(a.v, b.v, 1e-6) && near(a.depth, b.depth, 1e-6);
+  return same;
 }
 
 inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }

@@ -18,8 +18,11 @@
 namespace palpa::session {
 
 /// Format identity stored in every session file (meta keys `format` and `format_version`).
+/// Version 1 holds one row per tick (every session while it is recorded); version 2, what a
+/// finished session becomes, holds the ticks compacted into blocks (docs/session-format.md).
+/// The reader reads both; kFormatVersion is the newest it reads.
 inline constexpr std::string_view kFormat = "palpa-session";
-inline constexpr int kFormatVersion = 1;
+inline constexpr int kFormatVersion = 2;
 
 enum class EventKind : std::uint8_t { Start, Mark, Unmark, Pause, Resume, End };
 
@@ -70,6 +73,8 @@ struct Session {
   nlohmann::json loop_stats;
   /// True when the session has an End event: false for a session cut short (crash, kill).
   bool complete = false;
+  /// The file's format version (meta format_version): 1 (rows) or 2 (compact blocks).
+  int format_version = kFormatVersion;
 };
 
 /// Marks placed and not removed, in placement order.

@@ -14,11 +14,18 @@ struct sqlite3_stmt;
 
 namespace palpa::session {
 
+struct WriterOptions {
+  /// The format finish() leaves: 2 compacts the ticks into blocks (quantized to the format's
+  /// units, docs/session-format.md), 1 keeps one row per tick, every double exact (tests,
+  /// files for readers that know only format 1). While recording, a session is format 1.
+  int format_version = kFormatVersion;
+};
+
 class SessionWriter {
  public:
   /// Creates `path` (which must not exist: recorded data is never overwritten), writes the
   /// schema and `info`, and opens the first transaction. Throws SessionError.
-  SessionWriter(const std::filesystem::path& path, const SessionInfo& info);
+  SessionWriter(const std::filesystem::path& path, const SessionInfo& info, const WriterOptions& options = {});
   /// Commits what is pending and closes (a session without finish() stays incomplete).
   ~SessionWriter();
   SessionWriter(const SessionWriter&) = delete;
@@ -46,10 +53,13 @@ class SessionWriter {
   void set_loop_stats(const nlohmann::json& summary);
   /// Ends the open transaction (durable against a crash of this process) and opens the next.
   void commit();
-  /// Commits, checkpoints the WAL into the main file and closes. Call after the End event.
+  /// Commits, compacts the ticks into format 2 (unless the options say 1), checkpoints the
+  /// WAL into the main file and closes. Call after the End event.
   /// When another program has the file open, the switch out of write-ahead logging cannot
   /// be made: the data is committed all the same, the file stays in WAL mode (its -wal and
-  /// -shm beside it) and warning() says so; that is not an error.
+  /// -shm beside it) and warning() says so; that is not an error. Nor is a session whose
+  /// values do not fit format 2's units (an absurd position): it stays format 1, warning()
+  /// says why.
   void finish();
 
   std::uint64_t samples_written() const { return samples_; }
@@ -60,6 +70,7 @@ class SessionWriter {
 
  private:
   void close() noexcept;
+  void compact();
   void insert(const engine::Sample& sample);
   void put_loop_stats(const nlohmann::json& summary);
   std::filesystem::path path_;
@@ -70,6 +81,7 @@ class SessionWriter {
   std::uint64_t repaired_ = 0;
   double last_t_ = 0.0;        ///< t of the last tick written (valid when samples_ > 0)
   std::size_t bodies_ = 0;     ///< in the session's case: a sample's body is below it
+  WriterOptions options_;
   std::string warning_;
 };
 
@@ -80,6 +92,6 @@ void check_event(const std::string& file, const Event& event);
 
 /// Writes a whole session in one go (tests, converters): info, samples, events, stats;
 /// complete if the events end with End.
-void write_session(const std::filesystem::path& path, const Session& session);
+void write_session(const std::filesystem::path& path, const Session& session, const WriterOptions& options = {});
 
 }  // namespace palpa::session
