@@ -12,6 +12,7 @@ packages=(
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
   pkg-config libhidapi-dev libusb-1.0-0-dev
+  postgresql libpq-dev  # store/: the centre store (libpq; the server for its tests)
   libcurl4-openssl-dev  # lrs/: xAPI statements to a learning record store
   desktop-file-utils  # packaging test: desktop-file-validate on the menu entry (dpkg-dev comes with build-essential)
   gmsh calculix-ccx python3-numpy python3-scipy  # the finite-element reference (tools/fem) and its tests

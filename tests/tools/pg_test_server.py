@@ -168,6 +168,25 @@ class PgServer:
                        input="CREATE ROLE %s LOGIN PASSWORD '%s' IN ROLE %s;\n" % (user, password, group))
 
 
+def server_for_tests():
+    """A started PgServer, or unittest.SkipTest when PostgreSQL is not installed here; under
+    CI=true a missing server is a failure (RuntimeError), never a skip."""
+    import unittest
+    reason = unavailable_reason()
+    if reason and os.environ.get("CI", "").lower() == "true":
+        raise RuntimeError("CI=true and no PostgreSQL test server: " + reason)
+    if reason:
+        raise unittest.SkipTest(reason)
+    pg = PgServer()
+    try:
+        pg.start_new()
+    except subprocess.CalledProcessError as e:
+        log = pg.log() if pg.root else ""
+        pg.close()
+        raise RuntimeError("PostgreSQL test server did not start: %s\n%s\n%s" % (e, e.stderr, log))
+    return pg
+
+
 def main():
     reason = unavailable_reason()
     if reason:
