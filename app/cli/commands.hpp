@@ -29,6 +29,7 @@ Command add_batch_command(CLI::App& parent);
 Command add_store_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
 Command add_lrs_command(CLI::App& parent);
+Command add_session_command(CLI::App& parent);
 
 /// --report DIR [--force]: where a session's report files go (none when `dir` is empty), and
 /// whether files already there may be replaced.

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
                                 add_batch_command(app), add_bench_command(app), add_devices_command(app),
                                 add_lrs_command(app)};
   commands.push_back(add_store_command(app));  // the centre store (docs/centre.md)
+  commands.push_back(add_session_command(app));  // session upgrade (docs/session-format.md)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
