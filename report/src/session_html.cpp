@@ -110,10 +110,13 @@ void add_metrics(std::string& html, const score::Score& s) {
   row(html, "Samples", fmt::format("{}{}", s.samples, s.complete ? "" : " (session incomplete)"));
   html += "</table>\n";
   if (!s.subscores.empty()) {
-    html += "<h2>Sub-scores</h2>\n<table>\n<tr><th>part</th><th>value</th><th>weight</th></tr>\n";
+    // Points out of 100 add up to the score, so the page has one score scale (0-100).
+    html += "<h2>Sub-scores</h2>\n<table>\n<tr><th>part</th><th>achieved</th><th>weight</th><th>points (of 100)</th>"
+            "</tr>\n";
     for (const auto& sub : s.subscores)
       html += "<tr><td>" + esc(sub.name) + "</td><td class=\"num\">" + percent(sub.value) + "</td><td class=\"num\">" +
-              percent(sub.weight) + "</td></tr>\n";
+              percent(sub.weight) + "</td><td class=\"num\">" + fixed(100.0 * sub.weight * sub.value, 1) +
+              "</td></tr>\n";
     html += "</table>\n";
   }
 

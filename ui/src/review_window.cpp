@@ -183,7 +183,7 @@ void ReviewWindow::build_path() {
 void ReviewWindow::fill_metrics() {
   std::vector<std::pair<QString, QString>> rows;
   rows.emplace_back(tr("Result"), score_.passed ? tr("PASSED") : tr("FAILED"));
-  rows.emplace_back(tr("Score"), QString::number(score_.score, 'f', 2));
+  rows.emplace_back(tr("Score"), QString::number(score_.score * 100.0, 'f', 1) + " / 100");
   rows.emplace_back(tr("Sensitivity"), percent(score_.sensitivity));
   rows.emplace_back(tr("False positives"), QString::number(score_.false_positives));
   QStringList errors;

@@ -54,12 +54,12 @@ ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWi
   setWindowTitle(tr("Score card"));
   int found = 0;
   for (const auto& t : score.tumours) found += t.found ? 1 : 0;
-  headline_ = QString("%1: %2 of %3 tumours found, %4 false marks, score %5 %")
+  headline_ = QString("%1: %2 of %3 tumours found, %4 false marks, score %5 / 100")
                   .arg(score.passed ? "PASSED" : "NOT PASSED")
                   .arg(found)
                   .arg(score.tumours.size())
                   .arg(score.false_positives)
-                  .arg(score.score * 100.0, 0, 'f', 0);
+                  .arg(score.score * 100.0, 0, 'f', 1);
   text_ = QString::fromStdString(score::summary_text(score));
 
   auto* layout = new QVBoxLayout(this);

@@ -89,7 +89,7 @@ nlohmann::json to_json(const Score& s, bool with_maps) {
 std::string summary_text(const Score& s) {
   std::string out;
   out += s.abandoned ? "ABANDONED (not an exam)" : s.passed ? "PASSED" : "NOT PASSED";
-  out += fmt::format("  score {:.0f} / 100\n", 100.0 * s.score);
+  out += fmt::format("  score {:.1f} / 100\n", 100.0 * s.score);
   int found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
   out += fmt::format("tumours found     {} of {}", found, s.tumours.size());
