@@ -6,6 +6,8 @@ add_executable(report_tests
   report/html_test.cpp
   report/learning_curve_test.cpp
   report/report_json_test.cpp
+  report/csv_number_test.cpp
+  report/session_filter_test.cpp
 )
 target_link_libraries(report_tests PRIVATE palpa_report opencv_imgproc opencv_imgcodecs GTest::gtest GTest::gtest_main)
 target_compile_definitions(report_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

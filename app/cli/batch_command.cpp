@@ -28,6 +28,8 @@
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
 #include "palpa/report/learning_curve.hpp"
+#include "palpa/report/proficiency.hpp"
+#include "palpa/report/session_filter.hpp"
 #include "palpa/report/session_report.hpp"
 #include "palpa/report/summary_csv.hpp"
 #include "palpa/score/score.hpp"
@@ -46,6 +48,7 @@ struct BatchOptions {
   bool include_abandoned = false;  ///< learning curves: also the attempts a trainee abandoned
   bool all_modes = false;          ///< learning curves: every mode, not trainee exercises only
   bool force = false;              ///< the outputs of an earlier batch in --out may be replaced
+  report::SessionFilter filter;    ///< --since/--until/--case/--trainee: which sessions the outputs cover
   StoreBatchOptions store;         ///< --store: against the centre store (batch_store.cpp)
 };
 
@@ -80,7 +83,8 @@ struct Scored {
 
 struct Outcome {
   std::optional<Scored> scored;
-  std::string error;  ///< one line when skipped
+  std::string error;          ///< one line when skipped
+  bool left_out = false;      ///< read, but outside the filter: neither scored nor reported
 };
 
 /// Explicit files whatever their extension; folders searched recursively for *.palpa.
@@ -168,7 +172,7 @@ std::string one_line(std::string text) {
 }
 
 /// Reads and scores one session (and writes its report files); the samples are dropped on return.
-Outcome process(const Input& input, const fs::path& sessions_dir, bool reports, std::string& output_error) {
+Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOptions& o, std::string& output_error) {
   Outcome outcome;
   if (!input.error.empty()) {
     outcome.error = input.error;
@@ -176,9 +180,13 @@ Outcome process(const Input& input, const fs::path& sessions_dir, bool reports, 
   }
   try {
     const auto session = session::read_session(input.file);
-    auto score = score::score_session(session, input.file);
     auto header = report::header_of(session.info, input.file);
-    if (reports) {
+    if (!o.filter.matches(header)) {
+      outcome.left_out = true;
+      return outcome;
+    }
+    auto score = score::score_session(session, input.file);
+    if (o.reports) {
       try {
         report::write_session_report(sessions_dir, input.stem, header, session, score,
                                      {true, true, true, false});
@@ -211,7 +219,7 @@ std::vector<Outcome> score_all(const std::vector<Input>& inputs, const BatchOpti
   auto work = [&] {
     for (std::size_t i = next++; i < inputs.size(); i = next++) {
       std::string output_error;
-      outcomes[i] = process(inputs[i], out / "sessions", o.reports, output_error);
+      outcomes[i] = process(inputs[i], out / "sessions", o, output_error);
       if (!output_error.empty()) {
         std::lock_guard lock(output_mutex);
         if (output_failure.empty()) output_failure = output_error;
@@ -250,8 +258,11 @@ report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Sc
     passed.push_back(a->score.passed);
   }
   curve.cusum = report::failure_cusum(passed);
-  report::write_text(out / "trainees" / (curve.file_stem + ".csv"), report::trainee_csv(curve.attempts, curve.cusum));
-  curve.png = report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum));
+  curve.proficiency = report::proficiency(passed);
+  report::write_text(out / "trainees" / (curve.file_stem + ".csv"),
+                     report::trainee_csv(curve.attempts, curve.cusum, curve.proficiency));
+  curve.png =
+      report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum, curve.proficiency));
   report::write_text(out / "trainees" / (curve.file_stem + ".png"),
                      std::string_view(reinterpret_cast<const char*>(curve.png.data()), curve.png.size()));
   return curve;
@@ -280,6 +291,12 @@ std::vector<report::TraineeCurve> write_curves(const fs::path& out, const std::v
 }
 
 int run_batch(const BatchOptions& o) {
+  try {
+    o.filter.validate();
+  } catch (const report::FilterError& e) {
+    print_error(e.what());
+    return kBadInput;
+  }
   const auto inputs = collect_inputs(o.paths);
   const fs::path out(o.out);
   if (auto why = out_refusal(out, o.force, inputs); !why.empty()) {
@@ -298,8 +315,11 @@ int run_batch(const BatchOptions& o) {
 
   std::vector<Scored> scored;
   std::vector<report::SkippedFile> skipped;
+  std::size_t left_out = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    if (outcomes[i].scored) {
+    if (outcomes[i].left_out) {
+      ++left_out;
+    } else if (outcomes[i].scored) {
       scored.push_back(std::move(*outcomes[i].scored));
     } else {
       skipped.push_back({inputs[i].file, outcomes[i].error});
@@ -311,7 +331,8 @@ int run_batch(const BatchOptions& o) {
   });
   try {
     write_summary(out, scored, skipped);
-    report::write_text(out / "cohort.html", report::cohort_html(write_curves(out, scored, o), skipped));
+    report::write_text(out / "cohort.html",
+                       report::cohort_html(write_curves(out, scored, o), skipped, o.filter.describe()));
   } catch (const std::exception& e) {
     print_error(e.what());
     return kFailure;
@@ -320,8 +341,10 @@ int run_batch(const BatchOptions& o) {
     print_error(output_failure);
     return kFailure;
   }
-  std::fprintf(stderr, "batch: %zu of %zu sessions scored, %zu skipped; wrote %s\n", scored.size(), inputs.size(),
-               skipped.size(), (out / "summary.csv").c_str());
+  const std::string filtered =
+      o.filter.empty() ? std::string() : fmt::format(", {} outside {}", left_out, o.filter.describe());
+  std::fprintf(stderr, "batch: %zu of %zu sessions scored, %zu skipped%s; wrote %s\n", scored.size(), inputs.size(),
+               skipped.size(), filtered.c_str(), (out / "summary.csv").c_str());
   if (inputs.empty()) {
     print_error("no session files found (folders are searched for *.palpa)");
     return kBadInput;
@@ -351,6 +374,13 @@ Command add_batch_command(CLI::App& parent) {
   app->add_flag("--all-modes", o->all_modes,
                 "learning curves count every session (scripted, replays, instructors' Try it), not trainee "
                 "exercises only");
+  app->add_option("--since", o->filter.since,
+                  "only sessions started on or after DATE (YYYY-MM-DD, or a time such as 2026-11-01T08:00:00Z)");
+  app->add_option("--until", o->filter.until, "only sessions started on or before DATE (a date: up to its end)");
+  app->add_option("--case", o->filter.case_key,
+                  "only sessions of this case: its case_id or case_file as in summary.csv (or without "
+                  "urn:palpa:case: / .json)");
+  app->add_option("--trainee", o->filter.trainee, "only this trainee's sessions");
   add_store_batch_options(app, o->store);
   return {app, [o] {
             if (!o->store.store.empty()) {

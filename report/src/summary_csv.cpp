@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "palpa/report/csv_number.hpp"
 #include "palpa/report/encoding.hpp"
 
 namespace palpa::report {
@@ -13,7 +14,7 @@ const std::string& csv_header() {
       "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
       "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
       "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
-      "outcome,mode,case_file,case_id";
+      "outcome,mode,case_file,case_id,score_100";
   return kHeader;
 }
 
@@ -38,9 +39,9 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
     first = false;
     row += csv_field(v);
   };
-  auto number = [&row](double v) {
+  auto number = [&row](double v, CsvUnit unit) {
     row += ',';
-    row += number_text(v);
+    row += csv_number(v, unit);
   };
   auto flag = [&row](bool v) { row += v ? ",1" : ",0"; };
   auto count = [&row](auto n) { row += fmt::format(",{}", n); };
@@ -50,27 +51,28 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   text(h.case_title);
   text(h.started_at);
   flag(s.passed);
-  number(s.score);
-  number(s.sensitivity);
+  number(s.score, CsvUnit::Fraction);
+  number(s.sensitivity, CsvUnit::Fraction);
   count(s.false_positives);
-  number(mean_localization_error_mm(s));
-  number(s.coverage);
-  number(s.deep_coverage);
-  number(s.duration_s);
-  number(s.contact_time_s);
-  number(s.peak_force_n);
+  number(mean_localization_error_mm(s), CsvUnit::Millimetre);
+  number(s.coverage, CsvUnit::Fraction);
+  number(s.deep_coverage, CsvUnit::Fraction);
+  number(s.duration_s, CsvUnit::Second);
+  number(s.contact_time_s, CsvUnit::Second);
+  number(s.peak_force_n, CsvUnit::Newton);
   flag(s.safe);
-  number(s.palpate_search_ratio);
+  number(s.palpate_search_ratio, CsvUnit::Ratio);
   text(score::to_string(s.pattern.kind));
-  number(s.pressure.light_s);
-  number(s.pressure.medium_s);
-  number(s.pressure.deep_s);
+  number(s.pressure.light_s, CsvUnit::Second);
+  number(s.pressure.medium_s, CsvUnit::Second);
+  number(s.pressure.deep_s, CsvUnit::Second);
   flag(s.complete);
   count(s.samples);
   text(outcome_of(s));
   text(h.mode);
   text(h.case_file);
   text(h.case_id);
+  number(100.0 * s.score, CsvUnit::Score100);
   return row;
 }
 

@@ -11,6 +11,7 @@ sub/bob-1 of "Bob O'Neil/<x>"), a corrupt and a truncated .palpa file, and notes
 import argparse
 import csv
 import json
+import math
 import os
 import shutil
 import sqlite3
@@ -26,7 +27,30 @@ TIMEOUT = 300
 SESSIONS = None
 HEADER = ("file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
           "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
-          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id")
+          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id,score_100")
+TRAINEE_HEADER = ("attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
+                  "score_100,proficient,verdict")
+# CUSUM of failures, p0 0.1, p1 0.3, alpha = beta = 0.1: s = ln(9/7) / ln(27/7), h = ln 9 / ln(27/7).
+CUSUM_S = math.log(9 / 7) / math.log(27 / 7)
+CUSUM_H = math.log(9) / math.log(27 / 7)
+
+
+def restarted_cusum(passed):
+    """The CUSUM after each attempt, by hand: + (1 - s) per failure, - s per pass, back to 0
+    after the attempt that reached a limit."""
+    values, total = [], 0.0
+    for ok in passed:
+        total += -CUSUM_S if ok else 1 - CUSUM_S
+        values.append(total)
+        if abs(total) >= CUSUM_H - 1e-9:
+            total = 0.0
+    return values
+
+
+def cell(value, decimals):
+    """A number as the CSV writes it: fixed decimals, no sign on a zero."""
+    text = "%.*f" % (decimals, value)
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
 
 
 def run(args, timeout=TIMEOUT):
@@ -94,11 +118,11 @@ class Batch(unittest.TestCase):
         alice = read_csv(os.path.join(out, "trainees", "alice.csv"))
         self.assertEqual([r["attempt"] for r in alice], ["1", "2", "3"])
         self.assertEqual([r["session_id"] for r in alice], ["a0a0a0a0a0a0a0a0", "a1a1a1a1a1a1a1a1", "a2a2a2a2a2a2a2a2"])
-        # CUSUM of failures (p0 0.1, p1 0.3): + (1 - s) per failure, - s per pass, s = 0.18617.
-        s, total = 0.18616894171033568, 0.0
-        for r in alice:
-            total += -s if r["passed"] == "1" else 1 - s
-            self.assertAlmostEqual(float(r["cusum"]), total, places=9)
+        with open(os.path.join(out, "trainees", "alice.csv")) as fh:
+            self.assertEqual(fh.readline().rstrip("\r\n"), TRAINEE_HEADER)
+        # The CUSUM, to 0.01 as the CSV writes it.
+        expected = restarted_cusum([r["passed"] == "1" for r in alice])
+        self.assertEqual([r["cusum"] for r in alice], [cell(v, 2) for v in expected])
         self.assertTrue(os.path.getsize(os.path.join(out, "trainees", "alice.png")) > 1000)
         # The hostile trainee id became a safe file name of its own.
         names = sorted(os.listdir(os.path.join(out, "trainees")))
@@ -232,6 +256,124 @@ class Batch(unittest.TestCase):
             self.assertIn(option, res.stdout)
         self.assertEqual(self.batch(SESSIONS).returncode, 2)  # --out missing
         self.assertEqual(self.batch(SESSIONS, "--out", self.tmp.name, "--jobs", "0").returncode, 2)
+
+class Cohort(unittest.TestCase):
+    """Learning-curve verdicts, rounding and filters on a cohort made of copies of alice-1 (a
+    pass) and alice-0 (a failure), each with its own trainee, start time and mode."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="palpa_cohort_")
+        self.inputs = os.path.join(self.tmp.name, "in")
+        os.makedirs(self.inputs)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def attempts(self, trainee, outcomes, first_day, case_file=None):
+        """One session per letter of `outcomes` (P pass, F fail), a day apart from first_day
+        of November 2026."""
+        for k, outcome in enumerate(outcomes):
+            path = os.path.join(self.inputs, "%s-%02d.palpa" % (trainee, k))
+            shutil.copy(os.path.join(SESSIONS, "alice-1.palpa" if outcome == "P" else "alice-0.palpa"), path)
+            db = sqlite3.connect(path)
+            values = (("id", "%s%014d" % (trainee[:2], k)), ("trainee", trainee),
+                      ("started_at", "2026-11-%02dT09:00:00Z" % (first_day + k)), ("extra", json.dumps({"mode": "trainee"})))
+            for key, value in values:
+                db.execute("update meta set value = ? where key = ?", (value, key))
+            if case_file:
+                db.execute("update meta set value = ? where key = 'case_source'", ("cases/" + case_file,))
+            db.commit()
+            db.close()
+
+    def batch(self, *args):
+        """A batch into a new folder (an earlier batch's trainee files would stay in the old one)."""
+        self.runs = getattr(self, "runs", 0) + 1
+        out = os.path.join(self.tmp.name, "out%d" % self.runs)
+        return run(["batch", self.inputs, "--out", out] + list(args)), out
+
+    def test_a_trainee_who_passes_her_last_three_is_proficient(self):
+        self.attempts("dana", "FFFFFFPPP", 1)   # the CUSUM alone: failure rate above 30 %
+        self.attempts("erin", "PPPPP", 1)       # the CUSUM alone: no signal yet
+        self.attempts("fay", "PPPPFPP", 1)      # proficient at 3-4, then a failure and two passes
+        res, out = self.batch()
+        self.assertEqual(res.returncode, 0, res.stderr)
+        dana = read_csv(os.path.join(out, "trainees", "dana.csv"))
+        self.assertEqual([r["proficient"] for r in dana], ["0"] * 8 + ["1"])
+        self.assertEqual(dana[-1]["verdict"], "proficient since attempt 9")
+        self.assertEqual(dana[7]["verdict"], "not yet: 2 of the last 5 passed")
+        self.assertEqual([r["cusum"] for r in dana], [cell(v, 2) for v in restarted_cusum([False] * 6 + [True] * 3)])
+        self.assertEqual([r["signal"] for r in dana][:6], ["", "unacceptable"] * 3)
+        erin = read_csv(os.path.join(out, "trainees", "erin.csv"))
+        self.assertEqual(erin[-1]["verdict"], "proficient since attempt 3")
+        fay = read_csv(os.path.join(out, "trainees", "fay.csv"))
+        self.assertEqual(fay[-1]["proficient"], "0")
+        self.assertEqual(fay[-1]["verdict"],
+                         "proficient at attempts 3-4; failed attempt 5: not yet again (4 of the last 5 passed)")
+        with open(os.path.join(out, "cohort.html")) as fh:
+            html = fh.read()
+        self.assertIn('<td class="ok">proficient since attempt 9</td>', html)
+        self.assertIn("dana: proficient since attempt 9</h2>", html)
+        self.assertIn("failure rate probably above 30 % (attempt 6)", html)
+        self.assertIn("the line then restarts at 0.", html)
+        self.assertIn("Covers every session given.", html)
+
+    def test_csv_numbers_are_rounded_to_their_unit(self):
+        self.attempts("dana", "FP", 1)
+        res, out = self.batch()
+        self.assertEqual(res.returncode, 0, res.stderr)
+        report = json.loads(run(["score", os.path.join(self.inputs, "dana-01.palpa"), "--json"]).stdout)
+        row = [r for r in read_csv(os.path.join(out, "summary.csv")) if r["session_id"].endswith("1")][0]
+        decimals = {"score": 3, "sensitivity": 3, "coverage": 3, "deep_coverage": 3, "duration_s": 2,
+                    "contact_time_s": 2, "peak_force_n": 2, "palpate_search_ratio": 2}
+        for column, d in decimals.items():
+            self.assertEqual(row[column], cell(report[column], d), column)
+        self.assertEqual(row["score_100"], cell(100 * report["score"], 1))
+        mean = sum(report["localization_error_mm"]) / len(report["localization_error_mm"])
+        self.assertEqual(row["localization_error_mm"], cell(mean, 1))
+        for column in ("light_s", "medium_s", "deep_s"):
+            self.assertEqual(row[column], cell(report["pressure"][column], 2), column)
+        curve = read_csv(os.path.join(out, "trainees", "dana.csv"))
+        self.assertEqual(curve[1]["score_100"], row["score_100"])
+        self.assertEqual(curve[1]["score"], row["score"])
+
+    def test_filters_select_dates_case_and_trainee(self):
+        self.attempts("dana", "PPPPP", 1)                            # 1st-5th, flat-5x5.json
+        self.attempts("erin", "FFF", 28, case_file="default.json")   # 28th-30th, default.json
+        res, out = self.batch("--since", "2026-11-03", "--until", "2026-11-30")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = read_csv(os.path.join(out, "summary.csv"))
+        self.assertEqual(sorted(r["started_at"][:10] for r in rows),
+                         ["2026-11-%02d" % d for d in (3, 4, 5, 28, 29, 30)])
+        self.assertIn("6 of 8 sessions scored, 0 skipped, 2 outside sessions from 2026-11-03 to 2026-11-30", res.stderr)
+        with open(os.path.join(out, "cohort.html")) as fh:
+            self.assertIn("Covers sessions from 2026-11-03 to 2026-11-30.", fh.read())
+        # A full time is an instant: until 09:00 on the 4th keeps the 4th's 09:00 session.
+        res, out = self.batch("--since", "2026-11-02T09:00:01Z", "--until", "2026-11-04T09:00:00Z")
+        self.assertEqual(sorted(r["started_at"][:10] for r in read_csv(os.path.join(out, "summary.csv"))),
+                         ["2026-11-03", "2026-11-04"])
+        for case in ("default", "default.json"):
+            res, out = self.batch("--case", case)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            self.assertEqual({r["trainee"] for r in read_csv(os.path.join(out, "summary.csv"))}, {"erin"}, case)
+        case_id = [r for r in rows if r["trainee"] == "dana"][0]["case_id"]
+        res, out = self.batch("--case", case_id, "--trainee", "dana", "--since", "2026-11-01", "--until", "2026-11-30")
+        self.assertEqual(len(read_csv(os.path.join(out, "summary.csv"))), 5)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "trainees"))), ["dana.csv", "dana.png"])
+        with open(os.path.join(out, "cohort.html")) as fh:
+            self.assertIn("Covers sessions from 2026-11-01 to 2026-11-30, case %s, trainee dana." % case_id, fh.read())
+
+    def test_a_bad_date_is_one_line_naming_the_option(self):
+        self.attempts("dana", "P", 1)
+        for option, value in (("--since", "2026-13-01"), ("--until", "30/11/2026"), ("--since", "2026-02-30")):
+            res, out = self.batch(option, value)
+            self.assertEqual(res.returncode, 2, res.stderr)
+            lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
+            self.assertEqual(len(lines), 1, res.stderr)
+            self.assertTrue(lines[0].startswith("palpa-cli: error: %s: \"%s\" is not a date" % (option, value)), lines[0])
+            self.assertFalse(os.path.exists(out))
+        res, _ = self.batch("--since", "2026-12-01", "--until", "2026-11-30")
+        self.assertEqual(res.returncode, 2, res.stderr)
+        self.assertIn("--since: 2026-12-01 is after --until 2026-11-30", res.stderr)
 
 
 class SpreadsheetSafe(unittest.TestCase):

@@ -132,7 +132,19 @@ class Score(unittest.TestCase):
         self.assertEqual(len(rows), 1)
         self.assertEqual(rows[0]["session_id"], "a1a1a1a1a1a1a1a1")
         self.assertEqual(rows[0]["passed"], "1" if report["passed"] else "0")
-        self.assertAlmostEqual(float(rows[0]["coverage"]), report["coverage"], places=12)
+        # CSV numbers are rounded to their unit (shares to 0.001, the score out of 100 to 0.1);
+        # the JSON keeps full precision. Python's % rounds from the exact binary value too.
+        self.assertEqual(rows[0]["coverage"], "%.3f" % report["coverage"])
+        self.assertEqual(rows[0]["score"], "%.3f" % report["score"])
+        self.assertEqual(rows[0]["score_100"], "%.1f" % (100 * report["score"]))
+
+    def test_the_score_card_gives_the_score_out_of_100(self):
+        path = os.path.join(SESSIONS, "alice-1.palpa")
+        report = json.loads(run(["score", path, "--json"]).stdout)
+        res = run(["score", path])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        first = res.stdout.splitlines()[0]
+        self.assertTrue(first.endswith("  score %.1f / 100" % (100 * report["score"])), first)
 
     def test_incomplete_session_is_scored_and_said_to_be_incomplete(self):
         out = os.path.join(self.tmp.name, "rep")

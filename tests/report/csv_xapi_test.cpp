@@ -40,7 +40,7 @@ TEST(SummaryCsv, HeaderIsTheDocumentedContract) {
             "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
             "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
             "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
-            "outcome,mode,case_file,case_id");
+            "outcome,mode,case_file,case_id,score_100");
 }
 
 TEST(SummaryCsv, RowValuesLineUpWithTheHeader) {
@@ -57,13 +57,14 @@ TEST(SummaryCsv, RowValuesLineUpWithTheHeader) {
   EXPECT_NE(row.find("\"Smith, \"\"Jo\"\"\""), std::string::npos);
   EXPECT_EQ(v["case"], "Flat 5x5: plane skeleton, polynomial radius");
   EXPECT_EQ(v["passed"], "0");
-  EXPECT_EQ(v["score"], "0.6125");
+  EXPECT_EQ(v["score"], "0.613");  // fractions to 0.001 (csv_number.hpp)
+  EXPECT_EQ(v["score_100"], "61.3");
   EXPECT_EQ(v["false_positives"], "1");
-  EXPECT_EQ(v["localization_error_mm"], "3");  // mean of 2.5 and 3.5
+  EXPECT_EQ(v["localization_error_mm"], "3.0");  // mean of 2.5 and 3.5, to 0.1 mm
   EXPECT_EQ(v["duration_s"], "183.25");
   EXPECT_EQ(v["safe"], "1");
   EXPECT_EQ(v["pattern"], "sporadic");
-  EXPECT_EQ(v["deep_s"], "30.5");
+  EXPECT_EQ(v["deep_s"], "30.50");
   EXPECT_EQ(v["complete"], "1");
   EXPECT_EQ(v["samples"], "183250");
   EXPECT_EQ(v["file"], "sessions/alice-1.palpa");

@@ -28,7 +28,8 @@ TEST(Cusum, PassingEveryAttemptIsAcceptableAtTheNinth) {
   const auto c = failure_cusum(std::vector<bool>(12, true));
   ASSERT_EQ(c.value.size(), 12u);
   const double s = CusumDesign{}.s();
-  for (std::size_t i = 0; i < 12; ++i) EXPECT_NEAR(c.value[i], -s * static_cast<double>(i + 1), 1e-12);
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_NEAR(c.value[i], -s * static_cast<double>(i + 1), 1e-12);
+  for (std::size_t i = 9; i < 12; ++i) EXPECT_NEAR(c.value[i], -s * static_cast<double>(i - 8), 1e-12);  // restarted
   for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(c.signal[i], CusumSignal::None) << i;
   EXPECT_EQ(c.signal[8], CusumSignal::Acceptable);  // 9 s = 1.676 >= h0 = 1.628
   EXPECT_EQ(c.verdict, CusumSignal::Acceptable);
@@ -43,8 +44,8 @@ TEST(Cusum, TwoFailuresInARowReachTheUpperLimit) {
   EXPECT_EQ(failure_cusum({}).verdict, CusumSignal::None);
 }
 
-TEST(Cusum, EachSignalRestartsTheTest) {
-  // Two failures (unacceptable), then nine passes fall h0 below that point.
+TEST(Cusum, EachSignalRestartsTheChartAtZero) {
+  // Two failures (unacceptable), then nine passes fall h0 below the restart.
   std::vector<bool> passed{false, false};
   passed.insert(passed.end(), 9, true);
   const auto c = failure_cusum(passed);
@@ -52,6 +53,74 @@ TEST(Cusum, EachSignalRestartsTheTest) {
   for (std::size_t i = 2; i < 10; ++i) EXPECT_EQ(c.signal[i], CusumSignal::None) << i;
   EXPECT_EQ(c.signal[10], CusumSignal::Acceptable);
   EXPECT_EQ(c.verdict, CusumSignal::Acceptable);
+  // The values by hand, s = ln(9/7) / ln(27/7): up 1 - s per failure, down s per pass,
+  // from 0 again after the signal at attempt 2.
+  const double s = std::log(9.0 / 7.0) / std::log(27.0 / 7.0);
+  EXPECT_NEAR(c.value[0], 1 - s, 1e-12);
+  EXPECT_NEAR(c.value[1], 2 * (1 - s), 1e-12);  // 1.6277: the signal
+  for (std::size_t i = 2; i < 11; ++i) EXPECT_NEAR(c.value[i], -s * static_cast<double>(i - 1), 1e-12) << i;
+}
+
+TEST(Cusum, RestartedValuesMatchAHandComputedSequence) {
+  // F F P P F F: 0.8138, 1.6277 (signal, restart), -0.1862, -0.3723, 0.4415, 1.2553.
+  const auto c = failure_cusum({false, false, true, true, false, false});
+  const std::vector<double> expected{0.81383106, 1.62766212, -0.18616894, -0.37233788, 0.44149318, 1.25532424};
+  ASSERT_EQ(c.value.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(c.value[i], expected[i], 1e-8) << i;
+  EXPECT_EQ(c.signal[5], CusumSignal::None);  // 1.2553 < h1: the restart forgot the first two failures
+  EXPECT_EQ(cusum_words(c), "failure rate probably above 30 % (attempt 2)");
+  EXPECT_EQ(cusum_words(failure_cusum({true})), "no signal yet");
+}
+
+TEST(Cusum, CaptionSaysTheStepsAndLimitsInWords) {
+  EXPECT_EQ(cusum_caption(),
+            "Each failure raises the line by 0.81, each pass lowers it by 0.19; touching the upper line (1.63) means "
+            "the failure rate is probably above 30 %, touching the lower line (-1.63) that it is probably below 10 % "
+            "(each wrong about 10 times in 100); the line then restarts at 0.");
+}
+
+std::vector<bool> attempts_of(const std::string& pf) {
+  std::vector<bool> v;
+  for (const char c : pf) v.push_back(c == 'P');
+  return v;
+}
+
+TEST(Proficiency, LastThreePassedIsProficientWhateverCameBefore) {
+  const auto p = proficiency(attempts_of("FFFFFFPPP"));
+  EXPECT_TRUE(p.now());
+  EXPECT_EQ(p.headline(), "proficient since attempt 9");
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_FALSE(p.proficient[i]) << i;
+  EXPECT_EQ(p.verdict[7], "not yet: 2 of the last 5 passed");  // F F F P P
+  // The CUSUM alone would still call her failure rate unacceptable.
+  EXPECT_EQ(failure_cusum(attempts_of("FFFFFFPPP")).verdict, CusumSignal::Unacceptable);
+}
+
+TEST(Proficiency, FiveOfFiveIsProficientFromTheThird) {
+  const auto p = proficiency(attempts_of("PPPPP"));
+  EXPECT_EQ(p.proficient, (std::vector<bool>{false, false, true, true, true}));
+  EXPECT_EQ(p.headline(), "proficient since attempt 3");
+  EXPECT_EQ(p.verdict[0], "not yet: 1 of 1 passed");
+  EXPECT_EQ(p.verdict[1], "not yet: 2 of 2 passed");
+  EXPECT_EQ(failure_cusum(attempts_of("PPPPP")).verdict, CusumSignal::None);  // "undecided" before
+}
+
+TEST(Proficiency, TwoPassesAfterAFailureAreNotYet) {
+  const auto p = proficiency(attempts_of("FPP"));
+  EXPECT_FALSE(p.now());
+  EXPECT_EQ(p.headline(), "not yet: 2 of 3 passed");
+}
+
+TEST(Proficiency, AFailureEndsItAndThreeNewPassesRegainIt) {
+  // Proficient at attempts 4-9, failed attempt 10.
+  const auto p = proficiency(attempts_of("FPPPPPPPPFPP"));
+  EXPECT_EQ(p.verdict[8], "proficient since attempt 4");
+  EXPECT_EQ(p.verdict[9], "proficient at attempts 4-9; failed attempt 10: not yet again (4 of the last 5 passed)");
+  EXPECT_EQ(p.headline(), "proficient at attempts 4-9; failed attempt 10: not yet again (4 of the last 5 passed)");
+  const auto back = proficiency(attempts_of("FPPPPPPPPFPPP"));
+  EXPECT_EQ(back.headline(), "proficient since attempt 13");
+  EXPECT_EQ(proficiency(attempts_of("PPPF")).headline(),
+            "proficient at attempt 3; failed attempt 4: not yet again (3 of 4 passed)");
+  EXPECT_EQ(proficiency({}).headline(), "no attempts");
 }
 
 TEST(LearningCurve, TraineeCsvHasOneRowPerAttempt) {
@@ -65,14 +134,17 @@ TEST(LearningCurve, TraineeCsvHasOneRowPerAttempt) {
   h.file = "b,c.palpa";
   attempts.push_back(attempt_of(h, s));
   const auto cusum = failure_cusum({false, true});
-  const auto csv = trainee_csv(attempts, cusum);
-  const double s1 = 1.0 - CusumDesign{}.s(), s2 = s1 - CusumDesign{}.s();
+  const auto csv = trainee_csv(attempts, cusum, proficiency({false, true}));
+  // cusum 1 - s = 0.8138 -> 0.81, then 1 - 2 s = 0.6277 -> 0.63; score 0.6125 -> 0.613, 61.3 of 100.
   const std::string expected =
-      "attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal\n"
-      "1,2026-11-22T16:40:00Z,sessions/alice-1.palpa,3f2a9c,0.6125,0,0.5,0.4,0.1," + number_text(s1) + ",\n"
-      "2,2026-11-23T10:00:00Z,\"b,c.palpa\",3f2a9c,0.9,1,0.5,0.4,0.1," + number_text(s2) + ",\n";
+      "attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
+      "score_100,proficient,verdict\n"
+      "1,2026-11-22T16:40:00Z,sessions/alice-1.palpa,3f2a9c,0.613,0,0.500,0.400,0.100,0.81,,61.3,0,"
+      "not yet: 0 of 1 passed\n"
+      "2,2026-11-23T10:00:00Z,\"b,c.palpa\",3f2a9c,0.900,1,0.500,0.400,0.100,0.63,,90.0,0,"
+      "not yet: 1 of 2 passed\n";
   EXPECT_EQ(csv, expected);
-  const auto image = learning_curve_plot("alice", attempts, cusum);
+  const auto image = learning_curve_plot("alice", attempts, cusum, proficiency({false, true}));
   EXPECT_EQ(image.cols, 900);
   EXPECT_EQ(image.rows, 640);
 }
@@ -102,16 +174,40 @@ TEST(Cohort, PageListsTraineesVerdictsImagesAndSkippedFiles) {
   s.score = 0.8;
   t.attempts.push_back(attempt_of(testing::synthetic_header(), s));
   t.cusum = failure_cusum({false, false});
-  t.png = png_bytes(learning_curve_plot(t.trainee, t.attempts, t.cusum));
+  t.proficiency = proficiency({false, false});
+  t.png = png_bytes(learning_curve_plot(t.trainee, t.attempts, t.cusum, t.proficiency));
   const auto html = cohort_html({t}, {{"bad.palpa", "bad.palpa: meta: not a Palpa session <x>"}});
   EXPECT_EQ(html.find("<bob>"), std::string::npos);
   EXPECT_NE(html.find("&lt;bob&gt;"), std::string::npos);
-  EXPECT_NE(html.find("unacceptable"), std::string::npos);
-  EXPECT_NE(html.find("0 %"), std::string::npos);      // pass rate
+  EXPECT_NE(html.find("not yet: 0 of 2 passed"), std::string::npos);
+  EXPECT_NE(html.find("failure rate probably above 30 % (attempt 2)"), std::string::npos);
+  EXPECT_NE(html.find("0 of 2"), std::string::npos);   // passed
   EXPECT_NE(html.find("70.6"), std::string::npos);     // mean score (61.25 + 80) / 2 = 70.625
   EXPECT_NE(html.find("80.0"), std::string::npos);     // last score
+  EXPECT_NE(html.find("Covers every session given."), std::string::npos);
+  EXPECT_NE(html.find("the line then restarts at 0."), std::string::npos);
+  EXPECT_EQ(html.find("p0 ="), std::string::npos);     // the chart in words, not in symbols
+  EXPECT_EQ(html.find("h1 ="), std::string::npos);
   EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
   EXPECT_NE(html.find("bad.palpa: meta: not a Palpa session &lt;x&gt;"), std::string::npos);
+}
+
+TEST(Cohort, AProficientTraineeIsSaidSoAndTheSelectionIsNamed) {
+  TraineeCurve t;
+  t.trainee = "dana";
+  t.file_stem = "dana";
+  const auto passed = attempts_of("FFFFFFPPP");
+  for (const bool ok : passed) {
+    auto s = testing::synthetic_score();
+    s.passed = ok;
+    t.attempts.push_back(attempt_of(testing::synthetic_header(), s));
+  }
+  t.cusum = failure_cusum(passed);
+  t.proficiency = proficiency(passed);
+  const auto html = cohort_html({t}, {}, "sessions from 2026-11-01 to 2026-11-30, case default");
+  EXPECT_NE(html.find("<td class=\"ok\">proficient since attempt 9</td>"), std::string::npos);
+  EXPECT_NE(html.find("<h2 id=\"t-dana\">dana: proficient since attempt 9</h2>"), std::string::npos);
+  EXPECT_NE(html.find("Covers sessions from 2026-11-01 to 2026-11-30, case default."), std::string::npos);
 }
 
 }  // namespace

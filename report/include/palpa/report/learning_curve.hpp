@@ -9,12 +9,14 @@
 //   h0 = ln((1 - alpha) / beta) / (P + Q)   lower decision limit: failure rate acceptable
 //
 // with p0 = 0.1 (acceptable failure rate), p1 = 0.3 (unacceptable), alpha = beta = 0.1:
-// s = 0.1862, h0 = h1 = 1.6277. Read as repeated tests: a signal is given when the CUSUM
-// has fallen h0 below, or risen h1 above, its value at the last signal (0 at the start);
-// each signal restarts the test from there. The verdict is the last signal, "undecided"
-// before the first. With these limits a trainee who passes every attempt is judged
-// acceptable after 9 attempts (9 s = 1.68 >= h0), and two failures in a row reach h1
-// exactly (2 (1 - s) = 2 P / (P + Q) = ln 9 / (P + Q) = h1): a limit reached counts.
+// s = 0.1862, h0 = h1 = 1.6277. A signal is given when the chart reaches h1 (failure rate
+// probably above p1) or -h0 (probably below p0); the chart then restarts at 0: a new test
+// begins, speaking of the attempts since the signal, and the line can be read against the
+// two fixed limits drawn (the same signals as measuring from the last signal's value,
+// drawn so that the plot says what the test does). A limit reached
+// counts: two failures in a row give 2 (1 - s) = ln 9 / (P + Q) = h1 exactly, and nine
+// passes in a row 9 s = 1.676 >= h0. The headline verdict is not this chart but the
+// proficiency rule (proficiency.hpp); the chart is its supporting evidence.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -22,6 +24,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "palpa/report/proficiency.hpp"
 #include "palpa/report/session_header.hpp"
 #include "palpa/score/score.hpp"
 
@@ -40,13 +43,23 @@ enum class CusumSignal { None, Acceptable, Unacceptable };
 std::string_view to_string(CusumSignal signal, std::string_view none_text = "");
 
 struct Cusum {
-  std::vector<double> value;         ///< after each attempt
+  std::vector<double> value;         ///< after each attempt (the value reached, at a signal too)
   std::vector<CusumSignal> signal;   ///< signal given at each attempt (mostly None)
   CusumSignal verdict = CusumSignal::None;  ///< the last signal
 };
 
-/// The CUSUM of failures over attempts in order (true: the attempt passed).
+/// The CUSUM of failures over attempts in order (true: the attempt passed), restarted at 0
+/// after each signal.
 Cusum failure_cusum(const std::vector<bool>& passed, const CusumDesign& design = {});
+
+/// The chart in words, for the page under it: "Each failure raises the line by 0.81, each
+/// pass lowers it by 0.19; touching the upper line (1.63) means the failure rate is probably
+/// above 30 %, the lower (-1.63) below 10 %; the line then restarts at 0."
+std::string cusum_caption(const CusumDesign& design = {});
+
+/// The last signal in words: "failure rate probably above 30 % (attempt 2)", "... below
+/// 10 % (attempt 9)", or "no signal yet".
+std::string cusum_words(const Cusum& cusum, const CusumDesign& design = {});
 
 /// One scored session of a trainee, as kept by a batch (no samples, no maps).
 struct Attempt {
@@ -57,13 +70,16 @@ struct Attempt {
 };
 Attempt attempt_of(const SessionHeader& header, const score::Score& score);
 
-/// attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal
-/// (attempt from 1; score 0..1; passed 1/0; signal acceptable/unacceptable or empty).
-std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum);
+/// attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,
+/// score_100,proficient,verdict (attempt from 1; score and shares 0..1; passed 1/0; cusum after
+/// the attempt; signal acceptable/unacceptable or empty; proficient 1/0 and the verdict in
+/// words after the attempt). Numbers rounded per csv_number.hpp.
+std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum, const Proficiency& proficiency);
 
-/// Score per attempt (pass/fail markers) above the CUSUM with its decision limits.
+/// Score per attempt (pass/fail markers, the verdict in the title) above the CUSUM with its
+/// decision limits, captioned in words.
 cv::Mat learning_curve_plot(const std::string& trainee, const std::vector<Attempt>& attempts, const Cusum& cusum,
-                            const CusumDesign& design = {});
+                            const Proficiency& proficiency, const CusumDesign& design = {});
 
 /// A file name stem for a trainee id: letters, digits, '.', '_' and '-' kept, anything else
 /// turned into '_', no leading '.', at most 64 characters; when that changed the id (or it

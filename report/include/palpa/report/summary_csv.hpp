@@ -9,12 +9,13 @@
 namespace palpa::report {
 
 /// "file,session_id,trainee,case,started_at,passed,score,...,complete,samples,outcome,mode,
-/// case_file,case_id" (no newline).
+/// case_file,case_id,score_100" (no newline).
 const std::string& csv_header();
 
 /// The row for one session (no newline): passed, safe and complete as 1/0; score 0..1;
-/// localization_error_mm the mean over found tumours, empty when none was found; numbers
-/// in their shortest exact form; text fields quoted per RFC 4180.
+/// localization_error_mm the mean over found tumours, empty when none was found; score_100
+/// the score out of 100; numbers rounded to their unit (csv_number.hpp); text fields quoted
+/// per RFC 4180.
 std::string csv_row(const SessionHeader& header, const score::Score& score);
 
 /// "passed", "failed", "abandoned" (the trainee gave it up: no exam) or "incomplete" (cut short).
