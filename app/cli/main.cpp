@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  print_error("a command is required: validate, fit, probe, simulate, exercise, score, batch, bench, devices or lrs (see palpa-cli "
+  print_error("a command is required: validate, fit, probe, simulate, exercise, score, batch, bench, devices, lrs or store (see palpa-cli "
               "--help)");
   return kBadInput;
 }

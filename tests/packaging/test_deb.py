@@ -85,7 +85,7 @@ class Deb(unittest.TestCase):
         # dpkg-shlibdeps: one entry per shared library package the binaries load.
         names = {d.strip().split(" ")[0] for d in self.field("Depends").split(",")}
         expected = ["libc6", "libstdc++6", "libopencv-imgcodecs", "libsqlite3-0", "libhidapi-hidraw0", "libusb-1.0-0",
-                    "libfmt"]
+                    "libfmt", "libpq5"]
         if not ARGS.no_gui:
             expected += ["libqt5widgets5", "libvtk9"]
         for prefix in expected:
