@@ -252,7 +252,7 @@ class Batch(unittest.TestCase):
     def test_help_and_usage(self):
         res = run(["batch", "--help"])
         self.assertEqual(res.returncode, 0)
-        for option in ("--out", "--jobs", "--reports"):
+        for option in ("--out", "--jobs", "--reports", "--since", "--until", "--case", "--trainee"):
             self.assertIn(option, res.stdout)
         self.assertEqual(self.batch(SESSIONS).returncode, 2)  # --out missing
         self.assertEqual(self.batch(SESSIONS, "--out", self.tmp.name, "--jobs", "0").returncode, 2)
