@@ -29,10 +29,10 @@ endif()
 add_executable(session_example
   core/session/session_example_main.cpp
 )
-target_link_libraries(session_example PRIVATE palpa_core)
+target_link_libraries(session_example PRIVATE palpa_core fmt::fmt)
 palpa_warnings(session_example)
 add_test(NAME cli.session_python COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_session_python.py
-         --example $<TARGET_FILE:session_example> --repo ${PROJECT_SOURCE_DIR})
+         --example $<TARGET_FILE:session_example> --repo ${PROJECT_SOURCE_DIR} --cli ${cli})
 
 # palpa-cli session upgrade: format-1 files to format 2, checked against their scores.
 add_test(NAME cli.session_upgrade COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_session_upgrade.py

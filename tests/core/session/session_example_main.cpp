@@ -1,17 +1,47 @@
-// Writes a small finished session for the Python readability test
+// Writes a small finished session (format 2) for the Python readability test
 // (tests/cli/test_session_python.py): session_example OUT.palpa CASE.json
 // Sample k: t = k / 1000, x = k / 8, y = -k / 16, z = 0.03, force (0, 0, k / 4), in
 // contact with body 0 when k is odd (u = k / 1024, v = 0.5, depth = k / 65536).
+// session_example --dump FILE.palpa prints the C++ reader's ticks, one per line: tick t x y
+// z fx fy fz body u v depth buttons overrun fault, doubles in shortest round-trip form.
 #include <cstdio>
 #include <exception>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "palpa/io/case_file.hpp"
+#include "palpa/session/session_reader.hpp"
 #include "palpa/session/session_writer.hpp"
+
+namespace {
+
+int dump(const char* path) {
+  const auto s = palpa::session::read_session(path);
+  for (std::size_t k = 0; k < s.samples.size(); ++k) {
+    const auto& x = s.samples[k];
+    std::string contact = "None None None None";
+    if (x.body >= 0) contact = fmt::format("{} {} {} {}", x.body, x.u, x.v, x.depth);
+    fmt::print("{} {} {} {} {} {} {} {} {} {} {} {}\n", k, x.t, x.position[0], x.position[1], x.position[2],
+               x.force[0], x.force[1], x.force[2], contact, x.buttons, x.overrun ? 1 : 0, x.fault ? 1 : 0);
+  }
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace palpa;
+  if (argc == 3 && std::string(argv[1]) == "--dump") {
+    try {
+      return dump(argv[2]);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 1;
+    }
+  }
   if (argc != 3) {
-    std::fprintf(stderr, "usage: session_example OUT.palpa CASE.json\n");
+    std::fprintf(stderr, "usage: session_example OUT.palpa CASE.json | session_example --dump FILE.palpa\n");
     return 2;
   }
   try {
