@@ -385,6 +385,7 @@ Command add_batch_command(CLI::App& parent) {
   return {app, [o] {
             if (!o->store.store.empty()) {
               o->store.jobs = o->jobs;
+              o->store.filter = o->filter;
               return run_store_batch(o->store, o->out, [o](const std::vector<std::string>& files) {
                 auto folder = *o;
                 folder.paths = files;

@@ -121,10 +121,21 @@ void write_copy(const fs::path& path, const std::string& bytes, const std::strin
   fs::rename(tmp, path);
 }
 
-// Downloads every stored session into OUT/stored/STATION/SESSION_ID.palpa; returns the files.
-std::vector<std::string> download(store::Connection& c, const fs::path& folder) {
+// What to ask the store for: the filter's trainee, its dates a day wider each side (a
+// date's day, zones); the folder batch applies the exact filter to what comes down.
+store::SessionFilter coarse(const report::SessionFilter& f) {
+  constexpr double kDay = 86400.0;
+  store::SessionFilter c;
+  c.trainee = f.trainee;
+  if (auto since = report::parse_iso8601(f.since); !f.since.empty() && since) c.since_s = *since - kDay;
+  if (auto until = report::parse_iso8601(f.until); !f.until.empty() && until) c.until_s = *until + 2 * kDay;
+  return c;
+}
+
+// Downloads the stored sessions the filter may select into OUT/stored/STATION/SESSION_ID.palpa.
+std::vector<std::string> download(store::Connection& c, const fs::path& folder, const report::SessionFilter& filter) {
   std::vector<std::string> files;
-  for (const auto& s : store::list_sessions(c, {})) {
+  for (const auto& s : store::list_sessions(c, coarse(filter))) {
     std::string station = report::slug(s.station);
     if (station.empty()) station = "station";
     const auto dir = folder / station;
@@ -142,7 +153,7 @@ int run_export(const StoreBatchOptions& o, const std::string& out,
   try {
     store::Connection c(o.store);
     store::check_schema(c);
-    files = download(c, fs::path(out) / "stored");
+    files = download(c, fs::path(out) / "stored", o.filter);
     std::fprintf(stderr, "batch --store %s: %zu sessions in %s\n", c.target().c_str(), files.size(),
                  (fs::path(out) / "stored").c_str());
   } catch (const std::exception& e) {  // StoreError, or a filesystem error
@@ -150,7 +161,7 @@ int run_export(const StoreBatchOptions& o, const std::string& out,
     return kFailure;
   }
   if (files.empty()) {
-    print_error("the store holds no session");
+    print_error(o.filter.empty() ? "the store holds no session" : "no stored session is " + o.filter.describe());
     return kBadInput;
   }
   return folder_batch(files);

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "palpa/report/session_filter.hpp"
+
 namespace palpa::cli {
 
 struct StoreBatchOptions {
@@ -16,6 +18,9 @@ struct StoreBatchOptions {
   bool follow = false;    ///< worker: keep polling when nothing is left
   double lease_s = 600.0;
   int jobs = 0;           ///< worker threads (batch's --jobs); 0: all cores
+  /// --out: the batch's own filter; the store is asked for a superset of it (a day wider),
+  /// the folder batch then applies it exactly, so both batches select alike.
+  report::SessionFilter filter;
 };
 
 /// Declares --store, --worker, --follow and --lease on the batch command.

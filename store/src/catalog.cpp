@@ -1,9 +1,12 @@
 #include "palpa/store/catalog.hpp"
 
+#include <fmt/format.h>
+
 namespace palpa::store {
 namespace {
 
 Param optional_text(const std::string& v) { return v.empty() ? Param::null() : Param::text(v); }
+Param optional_seconds(const std::optional<double>& v) { return v ? Param::text(fmt::format("{}", *v)) : Param::null(); }
 
 }  // namespace
 
@@ -14,11 +17,11 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
       "to_char(s.started_at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'), "
       "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id) "
       "FROM sessions s JOIN trainees t ON t.id = s.trainee_id "
-      "WHERE ($1::timestamptz IS NULL OR s.started_at >= $1::timestamptz) "
-      "AND ($2::timestamptz IS NULL OR s.started_at < $2::timestamptz) "
+      "WHERE ($1::double precision IS NULL OR s.started_at >= to_timestamp($1::double precision)) "
+      "AND ($2::double precision IS NULL OR s.started_at < to_timestamp($2::double precision)) "
       "AND ($3::text IS NULL OR t.name = $3::text) "
       "ORDER BY s.station, s.started_at, s.session_id",
-      {optional_text(f.since), optional_text(f.until), optional_text(f.trainee)});
+      {optional_seconds(f.since_s), optional_seconds(f.until_s), optional_text(f.trainee)});
   std::vector<StoredSession> all;
   for (int i = 0; i < r.rows(); ++i) {
     all.push_back({r.integer(i, 0), r.text(i, 1), r.text(i, 2), r.text(i, 3), r.text(i, 4), r.text(i, 5),

@@ -98,6 +98,18 @@ class Centre(unittest.TestCase):
         self.assertTrue(os.path.exists(os.path.join(out, "cohort.html")))
         self.assertEqual(sorted(os.listdir(os.path.join(out, "trainees"))),
                          sorted(os.listdir(os.path.join(folder_out, "trainees"))))
+        # The folder batch's filters select alike (the store is asked for a superset).
+        only = ("--trainee", "trainee-001", "--since", "2026-01-05")
+        report = self.cli("batch", "--store", self.pg.url("palpa", "coordinator"), "--out", out + "-1", *only)
+        self.assertEqual(report.returncode, 0, report.stderr)
+        folder = self.cli("batch", corpus, "--out", folder_out + "-1", *only)
+        self.assertEqual(folder.returncode, 0, folder.stderr)
+        picked = rows_by_session(os.path.join(out + "-1", "summary.csv"))
+        self.assertEqual(picked, rows_by_session(os.path.join(folder_out + "-1", "summary.csv")))
+        self.assertEqual({r["trainee"] for r in picked.values()}, {"trainee-001"})
+        self.assertEqual(len(os.listdir(os.path.join(out + "-1", "stored", "room-a"))) +
+                         len(os.listdir(os.path.join(out + "-1", "stored", "room-b"))) +
+                         len(os.listdir(os.path.join(out + "-1", "stored", "room-c"))), len(picked))
 
 
 def main():

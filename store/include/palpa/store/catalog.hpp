@@ -1,6 +1,7 @@
 #pragma once
 // What a coordinator reads back from the store: the stored sessions (filtered) and their
 // files, for palpa-cli batch --store --out and palpa-cli store status.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,10 +9,11 @@
 
 namespace palpa::store {
 
+/// A coarse selection made by the server (the caller applies its exact filter after).
 struct SessionFilter {
-  std::string since;    ///< started_at >= this (ISO 8601 date or time); empty: no bound
-  std::string until;    ///< started_at < this; empty: no bound
-  std::string trainee;  ///< exact trainee id; empty: every trainee
+  std::optional<double> since_s;  ///< started_at >= this, seconds since 1970 UTC
+  std::optional<double> until_s;  ///< started_at < this
+  std::string trainee;            ///< exact trainee id; empty: every trainee
 };
 
 struct StoredSession {
