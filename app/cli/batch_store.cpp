@@ -63,7 +63,7 @@ void work_on(store::Connection& c, const store::Claim& claim, const std::string&
   } else {
     ++tally.scored;
     std::printf("scored: session %s (%s): %s %s\n", claim.session_id.c_str(), claim.file_name.c_str(),
-                fmt::format("{}", row.score).c_str(), row.passed ? "passed" : "failed");
+                fmt::format("{:.1f} / 100", 100.0 * row.score).c_str(), row.passed ? "passed" : "failed");
   }
   std::fflush(stdout);
 }
