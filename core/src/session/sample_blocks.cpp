@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -170,8 +171,10 @@ class ColumnReader {
     for (std::size_t k = 0; k < head; ++k) values[k] = take(8);
     switch (width) {
       case 0: std::fill(values.begin() + static_cast<std::ptrdiff_t>(head), values.end(), 0); break;
-      case 1: for (std::size_t k = head; k < n; ++k) values[k] = static_cast<std::int8_t>(*at_++); break;
-      default: for (std::size_t k = head; k < n; ++k) values[k] = take(width);
+      case 1: widen<std::int8_t>(values, head); break;
+      case 2: widen<std::int16_t>(values, head); break;
+      case 4: widen<std::int32_t>(values, head); break;
+      default: widen<std::int64_t>(values, head);
     }
     // Running sums in unsigned arithmetic: a hostile block wraps around instead of overflowing.
     for (int pass = 0; pass < order; ++pass) {
@@ -189,13 +192,30 @@ class ColumnReader {
     need(column, 1);
     return *at_++;
   }
+  // values[head...] from consecutive little-endian integers of type T.
+  template <typename T>
+  void widen(std::vector<std::int64_t>& values, std::size_t head) {
+    for (std::size_t k = head; k < values.size(); ++k, at_ += sizeof(T)) {
+      T v;
+      if constexpr (std::endian::native == std::endian::little) {
+        std::memcpy(&v, at_, sizeof(T));
+      } else {
+        v = static_cast<T>(peek(sizeof(T)));
+      }
+      values[k] = v;
+    }
+  }
   // A little-endian signed integer of `width` bytes (2, 4 or 8).
-  std::int64_t take(int width) {
+  std::int64_t peek(std::size_t width) const {
     std::uint64_t bits = 0;
-    for (int b = 0; b < width; ++b) bits |= static_cast<std::uint64_t>(at_[b]) << (8 * b);
-    at_ += width;
-    const int unused = 64 - 8 * width;
+    for (std::size_t b = 0; b < width; ++b) bits |= static_cast<std::uint64_t>(at_[b]) << (8 * b);
+    const auto unused = static_cast<int>(64 - 8 * width);
     return static_cast<std::int64_t>(bits << unused) >> unused;  // sign-extended
+  }
+  std::int64_t take(std::size_t width) {
+    const std::int64_t value = peek(width);
+    at_ += width;
+    return value;
   }
   const unsigned char* at_;
   const unsigned char* end_;
@@ -241,12 +261,11 @@ void decode_block(const void* data, std::size_t size, std::int64_t count, std::v
     }
     return value;
   };
-  const auto n = static_cast<std::size_t>(count);
-  out.reserve(out.size() + n);
+  const auto n = static_cast<std::size_t>(count);  // `out` grows geometrically: no reserve per block
   for (std::size_t k = 0; k < n; ++k) {
     engine::Sample s;
     // Divided, not multiplied by 10^-e: a value written as a short decimal reads back as
-    // exactly the double it was (0.001 * 7 stored as 7000 us reads as 0.007).
+    // exactly the double it was (7 / 1000.0 s, stored as 7000 us, reads back as 7 / 1000.0).
     s.t = static_cast<double>(ints[1][k]) / scale[1];
     for (std::size_t a = 0; a < 3; ++a) {
       s.position[a] = static_cast<double>(ints[2 + a][k]) / scale[2 + a];
