@@ -6,7 +6,9 @@ rewritten: a new session id, a trainee out of --trainees, and a start time one h
 the previous attempt of that trainee, so learning curves have an order. With
 --minutes M every copy's samples are repeated (shifted in time) until they last at least
 M minutes, the way a long recording would. --corrupt K adds K damaged files (random
-bytes, a truncated session) whose names sort among the good ones.
+bytes, a truncated session) whose names sort among the good ones. --format 2 --cli PATH
+converts the (stretched) bases to session format 2 with `PATH session upgrade` before they
+are copied, as finished recordings are; stretching needs format-1 bases (their rows).
 
 Standard library only (sqlite3), so the corpus can be built wherever the tests run.
 """
@@ -16,6 +18,7 @@ import os
 import random
 import shutil
 import sqlite3
+import subprocess
 import sys
 
 
@@ -23,6 +26,9 @@ def stretch(path, minutes):
     """Repeats the samples of `path` until they cover `minutes`; events stay as they are
     except the end event, which moves to the new last sample."""
     db = sqlite3.connect(path)
+    version = db.execute("select value from meta where key = 'format_version'").fetchone()[0]
+    if version != "1":
+        sys.exit("make_batch_corpus: --minutes needs format-1 bases (rows to repeat); %s is format %s" % (path, version))
     (n, t_last) = db.execute("select count(*), max(t) from samples").fetchone()
     if n == 0:
         db.close()
@@ -49,7 +55,12 @@ def main():
     ap.add_argument("--minutes", type=float, default=0.0, help="stretch each base to at least this long first")
     ap.add_argument("--corrupt", type=int, default=1)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--format", type=int, choices=(1, 2), default=1,
+                    help="session format of the copies: 1 as the bases are, 2 through palpa-cli session upgrade")
+    ap.add_argument("--cli", help="palpa-cli, for --format 2")
     args = ap.parse_args()
+    if args.format == 2 and not args.cli:
+        ap.error("--format 2 needs --cli PATH (palpa-cli converts the bases)")
 
     os.makedirs(args.out, exist_ok=True)
     rng = random.Random(args.seed)
@@ -60,6 +71,10 @@ def main():
         if args.minutes > 0:
             stretch(staged, args.minutes)
         bases.append(staged)
+    if args.format == 2:
+        res = subprocess.run([args.cli, "session", "upgrade"] + bases, capture_output=True, text=True)
+        if res.returncode != 0:
+            sys.exit("make_batch_corpus: %s session upgrade failed: %s" % (args.cli, res.stderr.strip()))
 
     start = datetime.datetime(2026, 1, 5, 8, 0, 0, tzinfo=datetime.timezone.utc)
     attempts = {}
