@@ -135,6 +135,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
   live::LiveOptions options;
   options.trainee = settings_.trainee;
   options.mode = "trainee";
+  options.station = station_name();
   options.seed = settings_.seed ? *settings_.seed : fresh_seed();
   options.session_path = first_trainee_ && !settings_.first_session.empty() ? settings_.first_session
                                                                             : default_session_path();

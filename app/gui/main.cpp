@@ -24,6 +24,7 @@
 #include "frame_bench.hpp"
 #include "palpa/options/number_checks.hpp"
 #include "quit_on_signal.hpp"
+#include "session_upload.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/data_paths.hpp"
@@ -201,6 +202,7 @@ std::unique_ptr<palpa::live::LiveExercise> trainee_exercise(const GuiOptions& o,
   palpa::live::LiveOptions options;
   options.trainee = o.trainee;
   options.mode = o.mode;
+  options.station = palpa::gui::station_name();
   if (o.seed) {
     options.seed = *o.seed;
   } else {

@@ -66,6 +66,14 @@ QString state_words(UploadState state, int waiting, const std::string& detail, c
 
 }  // namespace
 
+std::string station_name() {
+  try {
+    return store::resolve_settings("", "", "").station;
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
 UploadOutcome upload_finished_session(const std::filesystem::path& path, const score::Score* score) {
   UploadOutcome out;
   try {

@@ -12,6 +12,11 @@
 
 namespace palpa::gui {
 
+/// This station's name as the store knows it (PALPA_STATION, the store config file, else the
+/// host name), recorded in each session's extra.station; empty when the config file is bad
+/// (the upload then says why).
+std::string station_name();
+
 /// What became of one destination.
 enum class UploadState { NotConfigured, Sent, Waiting, Failed };
 

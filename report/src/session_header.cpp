@@ -19,6 +19,8 @@ SessionHeader header_of(const session::SessionInfo& info, const std::filesystem:
   h.mode = session::session_mode(info);
   h.case_file = std::filesystem::path(info.case_source).filename().string();
   h.case_id = case_activity_id(h);
+  if (info.extra.is_object() && info.extra.contains("station") && info.extra["station"].is_string())
+    h.station = info.extra["station"].get<std::string>();
   return h;
 }
 
@@ -33,7 +35,8 @@ nlohmann::json to_json(const SessionHeader& h) {
           {"file", h.file},
           {"mode", h.mode},
           {"case_file", h.case_file},
-          {"case_id", h.case_id}};
+          {"case_id", h.case_id},
+          {"station", h.station}};
 }
 
 std::string slug(std::string_view text) {

@@ -14,7 +14,7 @@ const std::string& csv_header() {
       "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
       "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
       "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
-      "outcome,mode,case_file,case_id,score_100";
+      "outcome,mode,case_file,case_id,score_100,station";
   return kHeader;
 }
 
@@ -73,6 +73,7 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   text(h.case_file);
   text(h.case_id);
   number(100.0 * s.score, CsvUnit::Score100);
+  text(h.station);
   return row;
 }
 

@@ -27,7 +27,7 @@ TIMEOUT = 300
 SESSIONS = None
 HEADER = ("file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
           "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
-          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id,score_100")
+          "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id,score_100,station")
 TRAINEE_HEADER = ("attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
                   "score_100,proficient,verdict")
 # CUSUM of failures, p0 0.1, p1 0.3, alpha = beta = 0.1: s = ln(9/7) / ln(27/7), h = ln 9 / ln(27/7).
@@ -191,14 +191,14 @@ class Batch(unittest.TestCase):
         self.assertEqual(res.returncode, 1, res.stderr)
         self.assertIn("palpa-cli: error: ", res.stderr)
 
-    def lifecycle_copy(self, name, session_id, trainee, started_at, mode, end_note=None):
+    def lifecycle_copy(self, name, session_id, trainee, started_at, mode, end_note=None, station=None):
         """alice-1 (a pass) copied with another id, trainee, start, mode and End note."""
         path = os.path.join(self.tmp.name, "in", name)
         os.makedirs(os.path.dirname(path), exist_ok=True)
         shutil.copy(os.path.join(SESSIONS, "alice-1.palpa"), path)
         db = sqlite3.connect(path)
         for key, value in (("id", session_id), ("trainee", trainee), ("started_at", started_at),
-                           ("extra", json.dumps({"mode": mode}))):
+                           ("extra", json.dumps(dict({"mode": mode}, **({"station": station} if station else {}))))):
             db.execute("update meta set value = ? where key = ?", (value, key))
         if end_note is not None:
             db.execute("update events set note = ? where kind = 'end'", (end_note,))
@@ -214,7 +214,7 @@ class Batch(unittest.TestCase):
         inputs.append(self.lifecycle_copy("alice-3.palpa", "a3a3a3a3a3a3a3a3", "alice", "2026-11-22T08:00:00Z",
                                           "trainee", "abandoned: the trainee closed the window"))
         inputs.append(self.lifecycle_copy("carol-1.palpa", "c1c1c1c1c1c1c1c1", "carol", "2026-11-22T09:00:00Z",
-                                          "instructor-try"))
+                                          "instructor-try", station="room-2"))
         out = os.path.join(self.tmp.name, "out")
         res = self.batch(*inputs, "--out", out)
         self.assertEqual(res.returncode, 0, res.stderr)
@@ -226,6 +226,9 @@ class Batch(unittest.TestCase):
         self.assertEqual(rows["a0a0a0a0a0a0a0a0"]["outcome"], "failed")
         self.assertEqual(rows["c1c1c1c1c1c1c1c1"]["mode"], "instructor-try")
         self.assertEqual(rows["a1a1a1a1a1a1a1a1"]["mode"], "trainee")
+        # The station that recorded a session (extra.station); empty for sessions without it.
+        self.assertEqual(rows["c1c1c1c1c1c1c1c1"]["station"], "room-2")
+        self.assertEqual(rows["a1a1a1a1a1a1a1a1"]["station"], "")
         for r in rows.values():
             self.assertEqual(r["case_file"], "flat-5x5.json")
             self.assertTrue(r["case_id"].startswith("urn:palpa:case:"), r["case_id"])

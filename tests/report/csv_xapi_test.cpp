@@ -40,12 +40,13 @@ TEST(SummaryCsv, HeaderIsTheDocumentedContract) {
             "file,session_id,trainee,case,started_at,passed,score,sensitivity,false_positives,"
             "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
             "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
-            "outcome,mode,case_file,case_id,score_100");
+            "outcome,mode,case_file,case_id,score_100,station");
 }
 
 TEST(SummaryCsv, RowValuesLineUpWithTheHeader) {
   auto h = testing::synthetic_header();
   h.trainee = "Smith, \"Jo\"";
+  h.station = "room-2";
   const auto s = testing::synthetic_score();
   const auto names = split_csv(csv_header());
   const auto row = csv_row(h, s);
@@ -59,6 +60,7 @@ TEST(SummaryCsv, RowValuesLineUpWithTheHeader) {
   EXPECT_EQ(v["passed"], "0");
   EXPECT_EQ(v["score"], "0.613");  // fractions to 0.001 (csv_number.hpp)
   EXPECT_EQ(v["score_100"], "61.3");
+  EXPECT_EQ(v["station"], "room-2");
   EXPECT_EQ(v["false_positives"], "1");
   EXPECT_EQ(v["localization_error_mm"], "3.0");  // mean of 2.5 and 3.5, to 0.1 mm
   EXPECT_EQ(v["duration_s"], "183.25");

@@ -19,6 +19,7 @@
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/mode_menu.hpp"
 #include "palpa/ui/review_window.hpp"
+#include "palpa/session/session_reader.hpp"
 #include "palpa/ui/trainee_window.hpp"
 
 namespace {
@@ -178,6 +179,7 @@ class AppWindowsTest : public QObject {
     qputenv("XDG_CONFIG_HOME", config.path().toLocal8Bit());  // no config files of the user's
     qputenv("PALPA_LRS", lrs.endpoint().toLocal8Bit());
     qputenv("PALPA_STORE", "host=127.0.0.1 port=1 dbname=palpa connect_timeout=2");  // nothing listens there
+    qputenv("PALPA_STATION", "room-7");
     palpa::gui::AppWindows app({"ui-upload", 3, {}, {}});
     auto* window = qobject_cast<palpa::ui::TraineeWindow*>(app.open_trainee(kDefaultCase));
     QVERIFY2(window, qPrintable(app.last_error()));
@@ -201,8 +203,12 @@ class AppWindowsTest : public QObject {
     const QDir outbox(sessions_.path() + "/palpa/outbox");
     QCOMPARE(outbox.entryList({"*.palpa"}, QDir::Files).size(), 1);
     QVERIFY(QFile::exists(QString::fromStdString(window->exercise().session_path().string())));
+    // The session says which station recorded it (summary.csv's station column).
+    const auto info = palpa::session::read_session(window->exercise().session_path(), {false}).info;
+    QCOMPARE(QString::fromStdString(info.extra.value("station", std::string())), QString("room-7"));
     qunsetenv("PALPA_LRS");
     qunsetenv("PALPA_STORE");
+    qunsetenv("PALPA_STATION");
   }
 
   void badFilesAreRefusedWithOneLineNamingThem() {

@@ -64,6 +64,7 @@ std::string LiveExercise::start() {
                                               scripted::iso8601_utc_now(), options_.engine.rate_hz);
   info.extra = nlohmann::json::object();  // not a scripted exercise: no style, the GUI mode instead
   info.extra["mode"] = options_.mode;
+  if (!options_.station.empty()) info.extra["station"] = options_.station;
   if (options_.session_path.has_parent_path()) std::filesystem::create_directories(options_.session_path.parent_path());
   writer_ = std::make_unique<session::SessionWriter>(options_.session_path, info);
   recorder_ = std::make_unique<session::SessionRecorder>(*loop_, *writer_, options_.commit_interval);

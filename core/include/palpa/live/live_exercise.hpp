@@ -34,6 +34,7 @@ struct LiveOptions {
   std::uint64_t seed = 0;             ///< places the tumours that have a placement rule
   std::filesystem::path session_path; ///< created by start(); must not exist
   std::string mode = "trainee";       ///< recorded in the session's extra metadata
+  std::string station;                ///< the station's name (extra.station); empty: not recorded
   engine::EngineOptions engine{};
   engine::RealtimeOptions realtime{};
   /// s: how softly the virtual probe follows its target. The surface follower already limits

@@ -22,6 +22,7 @@ struct SessionHeader {
   std::string mode;         ///< session::session_mode: trainee, instructor-try, scripted, replay, ...
   std::string case_file;    ///< the case file's name (case_source without its folder)
   std::string case_id;      ///< case_activity_id: the case's stable id in reports and xAPI
+  std::string station;      ///< extra.station: the station that recorded it; empty when not recorded
 };
 
 SessionHeader header_of(const session::SessionInfo& info, const std::filesystem::path& file);
