@@ -32,6 +32,8 @@ def main():
     ap.add_argument("--count", type=int, default=20)
     ap.add_argument("--minutes", type=float, default=5.0)
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--format", type=int, choices=(1, 2), default=2,
+                    help="session format of the corpus (2: as stations record them now)")
     args = ap.parse_args()
     repo = os.path.dirname(os.path.dirname(HERE))
     work = tempfile.mkdtemp(prefix="palpa-store-bench-")
@@ -39,7 +41,8 @@ def main():
         corpus = os.path.join(work, "corpus")
         bases = [os.path.join(repo, "data", "sessions", n + ".palpa") for n in ("expert", "sloppy", "light")]
         subprocess.run([sys.executable, os.path.join(HERE, "make_batch_corpus.py"), *bases, "--out", corpus,
-                        "--count", str(args.count), "--minutes", str(args.minutes), "--corrupt", "0"],
+                        "--count", str(args.count), "--minutes", str(args.minutes), "--corrupt", "0",
+                        "--format", str(args.format), "--cli", args.cli],
                        check=True, capture_output=True)
         files = sorted(os.path.join(corpus, n) for n in os.listdir(corpus) if n.endswith(".palpa") and n[0] != ".")
         size = sum(os.path.getsize(f) for f in files)
@@ -54,9 +57,9 @@ def main():
                             "--jobs", str(args.jobs)], env)
             folder = timed([args.cli, "batch", corpus, "--out", os.path.join(work, "folder-out"),
                             "--jobs", str(args.jobs)], env)
-        print("%d sessions of %.0f min, %.1f MB: push %.1f s (%.2f s/session), workers --jobs %d %.1f s, "
+        print("%d sessions of %.0f min (format %d), %.1f MB: push %.1f s (%.2f s/session), workers --jobs %d %.1f s, "
               "batch --store --out %.1f s, folder batch %.1f s"
-              % (len(files), args.minutes, size / 1e6, push, push / len(files), args.jobs, workers, export, folder))
+              % (len(files), args.minutes, args.format, size / 1e6, push, push / len(files), args.jobs, workers, export, folder))
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
