@@ -2,6 +2,7 @@
 // init creates or migrates the schema; push uploads finished sessions, queueing them in the
 // station's outbox when the server cannot be reached; status lists what waits there.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -131,11 +132,16 @@ int run_push(const StoreOptions& o) {
       print_error(e.what());
       return kFailure;
     }
-    print_error(e.what());
-    for (const auto& p : prepared) {
-      if (!queue(*s, p, e.what())) code = kFailure;
-    }
+    // The entries already waiting count this attempt; the ones queued now start at 1.
     store::mark_unreachable(s->outbox, e.what());
+    for (const auto& p : prepared) {
+      if (std::filesystem::exists(s->outbox / (p.session_id + ".palpa"))) {
+        say(fmt::format("already queued: {} ({})", p.path.string(), e.what()));
+      } else if (!queue(*s, p, e.what())) {
+        code = kFailure;
+      }
+    }
+    if (prepared.empty()) say(fmt::format("outbox: not sent ({})", e.what()));
     return code;
   }
   const int pushed = push_all(*c, *s, prepared);

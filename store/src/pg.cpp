@@ -34,7 +34,22 @@ std::string Result::bytes(int row, int col) const { return text(row, col); }
 
 long long Result::integer(int row, int col) const { return std::strtoll(text(row, col).c_str(), nullptr, 10); }
 
-Connection::Connection(const std::string& conninfo) : c_(PQconnectdb(conninfo.c_str()), &PQfinish) {
+// A connection string libpq cannot parse is the user's mistake, not a server that is down:
+// refused before connecting, so nothing is queued for a store that can never be reached.
+void check_conninfo(const std::string& conninfo) {
+  char* error = nullptr;
+  PQconninfoOption* options = PQconninfoParse(conninfo.c_str(), &error);
+  if (options) {
+    PQconninfoFree(options);
+    return;
+  }
+  const std::string why = error ? one_line(error) : "out of memory";
+  PQfreemem(error);
+  throw StoreError(fmt::format("store: bad connection string: {}", why), false);
+}
+
+Connection::Connection(const std::string& conninfo)
+    : c_((check_conninfo(conninfo), PQconnectdb(conninfo.c_str())), &PQfinish) {
   if (!c_) throw StoreError("store: cannot connect: out of memory", true);
   if (PQstatus(c_.get()) != CONNECTION_OK) {
     throw StoreError(fmt::format("store: cannot connect to {}: {}", target_of(c_.get()),

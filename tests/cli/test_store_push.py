@@ -112,6 +112,12 @@ class Push(unittest.TestCase):
         with open(os.path.join(self.outbox, "c2" * 16 + ".json")) as f:
             meta = json.load(f)
         self.assertEqual((meta["trainee"], meta["size"], meta["source"]), ("sample-light", os.path.getsize(path), path))
+        self.assertEqual(meta["attempts"], 1)  # one push, one attempt
+        again = self.cli("store", "push", path, "--store", down, "--station", "room-2", "--outbox", self.outbox)
+        self.assertEqual(again.returncode, 0, again.stderr)
+        self.assertIn("already queued: " + path, again.stdout)
+        with open(os.path.join(self.outbox, "c2" * 16 + ".json")) as f:
+            self.assertEqual(json.load(f)["attempts"], 2)
         status = self.cli("store", "status", "--store", down, "--station", "room-2", "--outbox", self.outbox)
         self.assertEqual(status.returncode, 0, status.stderr)
         self.assertIn("1 waiting", status.stdout)
@@ -126,6 +132,16 @@ class Push(unittest.TestCase):
         after = self.cli("store", "status", "--store", self.url, "--station", "room-2", "--outbox", self.outbox)
         self.assertIn("0 waiting", after.stdout)
         self.assertRegex(after.stdout, r"store 127\.0\.0\.1:\d+/palpa as station_a: \d+ sessions stored by this login")
+
+    def test_a_connection_string_libpq_cannot_parse_is_refused_not_queued(self):
+        path = self.session_copy("typo.palpa", "e4" * 16)
+        res = self.cli("store", "push", path, "--store", "host=127.0.0.1 dbname", "--station", "room-1",
+                       "--outbox", self.outbox)
+        self.assertEqual(res.returncode, 1, res.stdout)
+        lines = res.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, res.stderr)
+        self.assertIn("store: bad connection string: ", lines[0])
+        self.assertFalse(os.path.exists(os.path.join(self.outbox, "e4" * 16 + ".palpa")))
 
     def test_the_store_comes_from_the_environment_or_the_config_file(self):
         path = self.session_copy("env.palpa", "d3" * 16)
