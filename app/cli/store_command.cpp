@@ -135,7 +135,7 @@ int run_push(const StoreOptions& o) {
     // The entries already waiting count this attempt; the ones queued now start at 1.
     store::mark_unreachable(s->outbox, e.what());
     for (const auto& p : prepared) {
-      if (std::filesystem::exists(s->outbox / (p.session_id + ".palpa"))) {
+      if (std::filesystem::exists(store::queued_file(s->outbox, p.session_id))) {
         say(fmt::format("already queued: {} ({})", p.path.string(), e.what()));
       } else if (!queue(*s, p, e.what())) {
         code = kFailure;

@@ -77,11 +77,15 @@ OutboxEntry read_entry(const fs::path& file) {
 
 }  // namespace
 
+fs::path queued_file(const fs::path& outbox, const std::string& session_id) {
+  return outbox / (session_id + ".palpa");
+}
+
 OutboxEntry queue_session(const fs::path& outbox, const PreparedSession& s, const std::string& error) {
   std::error_code ec;
   fs::create_directories(outbox, ec);
   if (ec) throw StoreError(fmt::format("{}: outbox: cannot create: {}", outbox.string(), ec.message()), false);
-  const auto file = outbox / (s.session_id + ".palpa");
+  const auto file = queued_file(outbox, s.session_id);
   if (fs::exists(file, ec)) {
     auto e = read_entry(file);
     record_attempt(e, error);

@@ -21,6 +21,9 @@ struct OutboxEntry {
   int attempts = 0;
 };
 
+/// The outbox's copy of a session: OUTBOX/SESSION_ID.palpa (with SESSION_ID.json beside it).
+std::filesystem::path queued_file(const std::filesystem::path& outbox, const std::string& session_id);
+
 /// Copies the session into the outbox atomically (a temporary copy renamed into place),
 /// creating the folder; when it is queued already, records the new error only. Returns
 /// the entry. Throws StoreError naming the outbox when it cannot be written.
