@@ -7,6 +7,7 @@ set -euo pipefail
 # device/: hidapi (SpaceMouse) and libusb (Falcon), found through pkg-config.
 packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
+  ccache  # compiler cache (cmake/Ccache.cmake): a second build of the same sources is mostly cache hits
   libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
