@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "palpa/session/session_id.hpp"
 #include "palpa/version.hpp"
 
 namespace palpa::scripted {
@@ -40,8 +41,7 @@ session::SessionInfo exercise_session_info(const io::CaseFile& placed, const std
                                            const std::string& trainee, const std::string& device_name,
                                            const std::string& started_at, double rate_hz) {
   session::SessionInfo info;
-  std::random_device entropy;
-  info.id = fmt::format("{:08x}{:08x}", static_cast<unsigned>(entropy()), static_cast<unsigned>(entropy()));
+  info.id = session::new_session_id();
   info.trainee = trainee;
   info.device = device_name;
   info.software_version = palpa::kVersion;

@@ -17,6 +17,7 @@
 #include "compaction.hpp"
 #include "file_claim.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/session/session_id.hpp"
 #include "sqlite_util.hpp"
 
 namespace palpa::session {
@@ -31,16 +32,6 @@ std::string now_utc() {
   return std::string(text.data(), n);
 }
 
-std::string random_id() {
-  std::random_device device;
-  std::string id;
-  static constexpr char kHex[] = "0123456789abcdef";
-  for (int k = 0; k < 4; ++k) {
-    auto word = device();
-    for (int d = 0; d < 8; ++d, word >>= 4) id += kHex[word & 0xF];
-  }
-  return id;
-}
 
 /// The loop statistics as stored in meta loop_stats (docs/session-format.md).
 nlohmann::json loop_stats_json(const engine::LoopStats& stats) {
@@ -132,7 +123,7 @@ void write_header(const std::filesystem::path& building, const std::string& file
   };
   put("format", std::string(kFormat));
   put("format_version", "1");  // rows while recording; finish() compacts into format 2
-  put("id", info.id.empty() ? random_id() : info.id);
+  put("id", info.id.empty() ? new_session_id() : info.id);
   put("trainee", info.trainee);
   put("device", info.device);
   put("software_version", info.software_version);

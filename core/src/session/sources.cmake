@@ -1,6 +1,7 @@
 # Sources of core/session (see core/CMakeLists.txt).
 target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/session.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/session_id.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sqlite_util.cpp
   ${CMAKE_CURRENT_LIST_DIR}/checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sample_blocks.cpp
