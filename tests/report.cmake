@@ -1,6 +1,7 @@
 # Test targets of the report module (included by tests/CMakeLists.txt).
 add_executable(report_tests
   report/encoding_test.cpp
+  report/printable_test.cpp
   report/csv_xapi_test.cpp
   report/images_test.cpp
   report/html_test.cpp

@@ -6,11 +6,16 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "palpa/report/printable.hpp"
 #include "palpa/version.hpp"
 
 namespace palpa::cli {
 
-void print_error(const std::string& message) { std::fprintf(stderr, "palpa-cli: error: %s\n", message.c_str()); }
+// Messages carry names from files and the store: escaped, so no ESC, NUL or bidirectional
+// override reaches the terminal (report/printable.hpp).
+void print_error(const std::string& message) {
+  std::fprintf(stderr, "palpa-cli: error: %s\n", report::printable(message, 4000).c_str());
+}
 
 }  // namespace palpa::cli
 
