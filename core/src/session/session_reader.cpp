@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -26,6 +27,8 @@ std::string hex32(std::uint32_t value) { return fmt::format("0x{:08X}", value); 
 class Reader {
  public:
   Reader(const std::filesystem::path& path) : file_(path.string()) {}
+  /// A whole session file held in memory, named `name` in errors.
+  Reader(const std::string& name, const std::string& bytes) : file_(name), bytes_(&bytes) {}
   ~Reader() {
     if (db_ != nullptr) sqlite3_close_v2(db_);
   }
@@ -40,6 +43,9 @@ class Reader {
   }
   [[noreturn]] void fail_sqlite(const std::string& where, int rc) const;
   void check_file(const std::filesystem::path& path);
+  void check_bytes();
+  void open_in_memory();
+  void configure();
   [[noreturn]] void fail_wal_missing() const;
   bool wal_files_missing() const;
   void refuse_empty_without_wal(const Session& session);
@@ -75,6 +81,7 @@ class Reader {
   }
 
   std::string file_;
+  const std::string* bytes_ = nullptr;  // the file's bytes when read from memory (read_session_bytes)
   bool wal_header_ = false;  // the file header says WAL mode: it needs its -wal and -shm
   bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
   detail::JournalBeside journal_ = detail::JournalBeside::None;
@@ -151,6 +158,29 @@ void Reader::check_file(const std::filesystem::path& path) {
   }
 }
 
+void Reader::check_bytes() {
+  if (bytes_->empty()) fail("file", "not a Palpa session (empty file)");
+  if (bytes_->size() < 16 || std::string_view(bytes_->data(), 16) != std::string_view("SQLite format 3\0", 16)) {
+    fail("file", "not a Palpa session (not an SQLite database)");
+  }
+}
+
+// The bytes deserialized into an in-memory database (SQLite's memdb), read-only. A file
+// whose header says WAL mode is read as a rollback-journal file: memory has no -wal.
+void Reader::open_in_memory() {
+  int rc = sqlite3_open_v2(":memory:", &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr);
+  if (rc != SQLITE_OK) fail_sqlite("file", rc);
+  const auto size = static_cast<sqlite3_uint64>(bytes_->size());
+  auto* copy = static_cast<unsigned char*>(sqlite3_malloc64(size));
+  if (copy == nullptr) fail("file", "out of memory");
+  std::memcpy(copy, bytes_->data(), bytes_->size());
+  if (size >= 20 && copy[18] == 2 && copy[19] == 2) copy[18] = copy[19] = 1;
+  rc = sqlite3_deserialize(db_, "main", copy, static_cast<sqlite3_int64>(size), static_cast<sqlite3_int64>(size),
+                           SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY);
+  if (rc != SQLITE_OK) fail_sqlite("file", rc);
+  configure();
+}
+
 void Reader::open() {
   // Read-only: a session is evidence and is never changed by reading it. A session cut
   // short still has its -wal (and -shm) beside it; SQLite reads the committed part of it.
@@ -161,6 +191,10 @@ void Reader::open() {
   const int flags = SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX | (as_is ? SQLITE_OPEN_URI : 0);
   const int rc = sqlite3_open_v2(name.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) fail_sqlite("file", rc);
+  configure();
+}
+
+void Reader::configure() {
   sqlite3_extended_result_codes(db_, 1);
   sqlite3_busy_timeout(db_, 2000);  // a writer mid-commit: wait briefly, never hang
   // A hostile file may carry views or triggers: run nothing it defines.
@@ -547,8 +581,13 @@ void Reader::read_blocks(Session& session, std::int64_t max_samples) {
 }
 
 Session Reader::read(const std::filesystem::path& path, const ReadOptions& options) {
-  check_file(path);
-  open();
+  if (bytes_ != nullptr) {
+    check_bytes();
+    open_in_memory();
+  } else {
+    check_file(path);
+    open();
+  }
   // One read transaction for everything: a live session being written meanwhile is read
   // as one consistent snapshot (meta, events and samples of the same commit).
   std::string error;
@@ -577,6 +616,11 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
 Session read_session(const std::filesystem::path& path, const ReadOptions& options) {
   Reader reader(path);
   return reader.read(path, options);
+}
+
+Session read_session_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  Reader reader(name, bytes);
+  return reader.read(name, options);
 }
 
 }  // namespace palpa::session

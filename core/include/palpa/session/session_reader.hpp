@@ -4,6 +4,7 @@
 // inconsistent throws SessionError naming the file and the place.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "palpa/session/session.hpp"
 
@@ -20,5 +21,9 @@ struct ReadOptions {
 /// version, a missing table or meta key, a NULL or non-finite value where a number is
 /// required, ticks out of order, an invalid case document.
 Session read_session(const std::filesystem::path& path, const ReadOptions& options = {});
+
+/// The same for a whole session file held in memory (not one being recorded), named
+/// `name` in errors: how a centre worker reads a claimed session without a copy on disk.
+Session read_session_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options = {});
 
 }  // namespace palpa::session
