@@ -11,7 +11,12 @@
 namespace palpa::cli {
 
 /// Exit codes shared by all commands.
-enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
+enum ExitCode : int {
+  kOk = 0,
+  kFailure = 1,
+  kBadInput = 2,
+  kQueuedForUpgrade = 3,  ///< store push: the store needs a newer Palpa; the sessions wait in the outbox
+};
 
 struct Command {
   CLI::App* app;

@@ -11,11 +11,14 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "isolated_score.hpp"
+#include "palpa/report/printable.hpp"
 #include "palpa/store/catalog.hpp"
 #include "palpa/store/config.hpp"
 #include "palpa/store/outbox.hpp"
 #include "palpa/store/push.hpp"
 #include "palpa/store/schema.hpp"
+#include "palpa/store/session_checks.hpp"
 
 namespace palpa::cli {
 namespace {
@@ -27,14 +30,16 @@ struct StoreOptions {
   std::vector<std::string> sessions;
   std::string store, station, outbox;
   bool outbox_only = false;
+  int schema_version = 0;  ///< init: stop at this version (0: the newest)
 };
 
-void say(const std::string& line) { std::printf("%s\n", line.c_str()); }
+// Lines carry names from session files and the store: escaped (report/printable.hpp).
+void say(const std::string& line) { std::printf("%s\n", report::printable(line, 4000).c_str()); }
 
 int run_init(const StoreOptions& o) {
   try {
     store::Connection c(o.url);
-    const auto r = store::init_schema(c);
+    const auto r = store::init_schema(c, o.schema_version);
     if (r.from == r.to) {
       say(fmt::format("store: {}: schema version {}, already up to date", c.target(), r.to));
     } else {
@@ -50,6 +55,7 @@ int run_init(const StoreOptions& o) {
 std::optional<store::StoreSettings> settings_of(const StoreOptions& o, bool need_store) {
   try {
     auto s = store::resolve_settings(o.store, o.station, o.outbox);
+    store::check_station_name(s.station);
     if (need_store && s.conninfo.empty()) {
       print_error(fmt::format("no store configured: give --store, set PALPA_STORE or write \"store\" in {}",
                               store::config_path().string()));
@@ -72,6 +78,22 @@ bool queue(const store::StoreSettings& s, const store::PreparedSession& p, const
     print_error(fmt::format("{}: not pushed and not queued: {}", p.path.string(), e.what()));
     return false;
   }
+}
+
+// The store runs a newer schema than this Palpa: nothing can be pushed until the station is
+// upgraded, but nothing is lost either: the sessions wait in the outbox.
+int queue_for_upgrade(const store::StoreSettings& s, const std::vector<store::PreparedSession>& all,
+                      const std::string& why) {
+  int code = kQueuedForUpgrade;
+  for (const auto& p : all) {
+    if (std::filesystem::exists(store::queued_file(s.outbox, p.session_id))) {
+      say(fmt::format("already queued: {} ({})", p.path.string(), why));
+    } else if (!queue(s, p, why)) {
+      code = kFailure;
+    }
+  }
+  print_error(why + "; the sessions wait in the outbox until this station runs the newer Palpa");
+  return code;
 }
 
 void report_flush(const store::FlushResult& r) {
@@ -127,6 +149,8 @@ int run_push(const StoreOptions& o) {
   try {
     c = std::make_unique<store::Connection>(s->conninfo);
     store::check_schema(*c);
+  } catch (const store::NewerSchemaError& e) {
+    return queue_for_upgrade(*s, prepared, e.what());
   } catch (const store::StoreError& e) {
     if (!e.unreachable()) {
       print_error(e.what());
@@ -206,6 +230,9 @@ Command add_store_command(CLI::App& parent) {
   app->require_subcommand(1);
   auto* init = app->add_subcommand("init", "Create or migrate the store's schema and its roles (as the database owner).");
   init->add_option("URL", o->url, "libpq connection string or URI of the database")->required();
+  init->add_option("--schema-version", o->schema_version,
+                   "stop at this schema version (to test a migration from an older store); default: the newest")
+      ->check(CLI::Range(1, store::known_schema_version()));
   auto* push = app->add_subcommand(
       "push", "Upload finished sessions (idempotent by session id, verified by SHA-256); when the server cannot be "
               "reached they are copied into the outbox. Then sends what the outbox holds.");
@@ -214,7 +241,11 @@ Command add_store_command(CLI::App& parent) {
   add_station_options(push, *o);
   auto* status = app->add_subcommand("status", "List the outbox and, when the store is reachable, this login's uploads.");
   add_station_options(status, *o);
-  return {app, [o, init, push] {
+  // The scoring child of batch --store --worker (isolated_score.hpp); not for people.
+  auto* score_claim = app->add_subcommand("score-claim", "internal: a worker's scoring child process");
+  score_claim->group("");
+  return {app, [o, init, push, score_claim] {
+            if (score_claim->parsed()) return run_score_child();
             if (init->parsed()) return run_init(*o);
             if (push->parsed()) return run_push(*o);
             return run_status(*o);

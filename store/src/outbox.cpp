@@ -10,6 +10,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "palpa/report/printable.hpp"
+#include "palpa/session/session_id.hpp"
+#include "palpa/store/session_checks.hpp"
+
 namespace palpa::store {
 namespace {
 
@@ -37,7 +41,12 @@ void write_atomically(const fs::path& path, const std::string& text) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << text;
     out.flush();
-    if (!out) throw StoreError(fmt::format("{}: outbox: cannot write {}", path.parent_path().string(), tmp.string()), false);
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);  // a partial copy would keep a full disk full
+      throw StoreError(fmt::format("{}: outbox: cannot write (disk full?)", path.string()), false);
+    }
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
@@ -78,10 +87,15 @@ OutboxEntry read_entry(const fs::path& file) {
 }  // namespace
 
 fs::path queued_file(const fs::path& outbox, const std::string& session_id) {
+  if (!session::is_session_id(session_id)) {
+    throw StoreError(fmt::format("outbox: \"{}\" is no session id: not queued", report::printable(session_id, 40)),
+                     false);
+  }
   return outbox / (session_id + ".palpa");
 }
 
 OutboxEntry queue_session(const fs::path& outbox, const PreparedSession& s, const std::string& error) {
+  check_pushable(s);  // its id becomes the file name: only a session the store would take
   std::error_code ec;
   fs::create_directories(outbox, ec);
   if (ec) throw StoreError(fmt::format("{}: outbox: cannot create: {}", outbox.string(), ec.message()), false);
@@ -94,7 +108,12 @@ OutboxEntry queue_session(const fs::path& outbox, const PreparedSession& s, cons
   write_atomically(file, s.bytes);  // the bytes already checksummed, not a new read
   OutboxEntry e{file, fs::absolute(s.path, ec).string(), s.session_id, s.trainee, s.started_at, now_utc(), error,
                 s.bytes.size(), 1};
-  write_meta(e);
+  try {
+    write_meta(e);
+  } catch (const StoreError&) {
+    fs::remove(file, ec);  // not queued after all: no copy without its record
+    throw;
+  }
   return e;
 }
 

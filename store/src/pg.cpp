@@ -48,13 +48,33 @@ void check_conninfo(const std::string& conninfo) {
   throw StoreError(fmt::format("store: bad connection string: {}", why), false);
 }
 
+namespace {
+
+// A connection that failed for a reason retrying cannot fix (a bad option value, a service
+// that is not defined): the user's mistake, refused without queuing. Everything else
+// (refused, timed out, no route, a server starting up, authentication) may pass later.
+bool is_configuration_mistake(const std::string& message) {
+  static constexpr const char* kMistakes[] = {"invalid sslmode value", "invalid integer value", "invalid port number",
+                                              "definition of service", "service file", "invalid value for parameter",
+                                              "invalid connection option", "invalid gssencmode value",
+                                              "invalid target_session_attrs value", "invalid channel_binding value",
+                                              "invalid require_auth", "invalid load_balance_hosts value",
+                                              "invalid ssl_min_protocol_version", "invalid ssl_max_protocol_version"};
+  for (const char* m : kMistakes) {
+    if (message.find(m) != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Connection::Connection(const std::string& conninfo)
     : c_((check_conninfo(conninfo), PQconnectdb(conninfo.c_str())), &PQfinish) {
   if (!c_) throw StoreError("store: cannot connect: out of memory", true);
   if (PQstatus(c_.get()) != CONNECTION_OK) {
-    throw StoreError(fmt::format("store: cannot connect to {}: {}", target_of(c_.get()),
-                                 one_line(PQerrorMessage(c_.get()))),
-                     true);
+    const std::string why = one_line(PQerrorMessage(c_.get()));
+    if (is_configuration_mistake(why)) throw StoreError(fmt::format("store: bad connection settings: {}", why), false);
+    throw StoreError(fmt::format("store: cannot connect to {}: {}", target_of(c_.get()), why), true);
   }
   // Notices (e.g. "relation already exists, skipping") are not for the user's terminal.
   PQsetNoticeProcessor(c_.get(), [](void*, const char*) {}, nullptr);
@@ -64,7 +84,10 @@ std::string Connection::target() const { return target_of(c_.get()); }
 
 void Connection::fail(std::string_view what, const PGresult* r) const {
   const bool broken = PQstatus(c_.get()) != CONNECTION_OK;
-  std::string message = r ? PQresultErrorMessage(r) : "";
+  // The server's primary message alone: its CONTEXT lines name functions and statements
+  // that are the store's business, not the caller's.
+  const char* primary = r ? PQresultErrorField(r, PG_DIAG_MESSAGE_PRIMARY) : nullptr;
+  std::string message = primary ? primary : "";
   if (message.empty()) message = PQerrorMessage(c_.get());
   throw StoreError(fmt::format("store: {}: {}", what, one_line(message)), broken);
 }

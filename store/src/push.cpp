@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "palpa/report/printable.hpp"
 #include "palpa/session/session_reader.hpp"
+#include "palpa/store/session_checks.hpp"
 #include "palpa/store/sha256.hpp"
 
 namespace palpa::store {
@@ -23,6 +25,8 @@ nlohmann::json events_json(const std::vector<session::Event>& events) {
 
 }  // namespace
 
+std::string shown(const fs::path& path) { return report::printable(path.string(), 200); }
+
 PreparedSession prepare_session(const fs::path& path) {
   std::error_code ec;
   auto wal = path;
@@ -30,7 +34,7 @@ PreparedSession prepare_session(const fs::path& path) {
   if (fs::file_size(wal, ec) > 0 && !ec) {
     throw StoreError(fmt::format("{}: has a -wal beside it: still being recorded (or open in another program); "
                                  "not pushed",
-                                 path.string()),
+                                 shown(path)),
                      false);
   }
   PreparedSession p;
@@ -45,7 +49,7 @@ PreparedSession prepare_session(const fs::path& path) {
   }
   if (!s.complete) {
     throw StoreError(fmt::format("{}: session incomplete (no end event: still recording or cut short); not pushed",
-                                 path.string()),
+                                 shown(path)),
                      false);
   }
   p.sha256 = sha256_hex(p.bytes);
@@ -55,20 +59,20 @@ PreparedSession prepare_session(const fs::path& path) {
   p.mode = session::session_mode(s.info);
   p.case_document = s.info.case_document;
   p.case_title = s.info.case_document.value("title", std::string());
-  p.case_sha256 = sha256_hex(s.info.case_document.dump());
   p.events = events_json(s.events);
   p.complete = s.complete;
   p.samples = s.samples.size();
+  check_pushable(p);
   return p;
 }
 
 PushResult push_prepared(Connection& c, const PreparedSession& p, const std::string& station) {
   Transaction t(c);
-  const auto r = c.exec(fmt::format("push {}", p.path.string()),
-                        "SELECT stored, server_sha256 FROM palpa_push_session($1, $2, $3, $4, $5, $6::jsonb, "
-                        "$7::timestamptz, $8, $9::boolean, $10::bigint, $11, $12::jsonb, $13::bytea)",
+  const auto r = c.exec(fmt::format("push {}", shown(p.path)),
+                        "SELECT stored, server_sha256 FROM public.palpa_push_session($1, $2, $3, $4, $5::jsonb, "
+                        "$6::timestamptz, $7, $8::boolean, $9::bigint, $10, $11::jsonb, $12::bytea)",
                         {Param::text(station), Param::text(p.session_id), Param::text(p.trainee),
-                         Param::text(p.case_sha256), Param::text(p.case_title), Param::text(p.case_document.dump()),
+                         Param::text(p.case_title), Param::text(p.case_document.dump()),
                          Param::text(p.started_at), Param::text(p.mode), Param::text(p.complete ? "true" : "false"),
                          Param::text(std::to_string(p.samples)), Param::text(p.file_name),
                          Param::text(p.events.dump()), Param::bytes(p.bytes)});
@@ -78,7 +82,7 @@ PushResult push_prepared(Connection& c, const PreparedSession& p, const std::str
   result.sha256 = r.text(0, 1);
   if (result.sha256 != p.sha256) {
     throw StoreError(fmt::format("{}: session {} {} with SHA-256 {}, the file has {}; nothing changed",
-                                 p.path.string(), p.session_id,
+                                 shown(p.path), p.session_id,
                                  result.status == PushStatus::Stored ? "was stored" : "is already stored",
                                  result.sha256, p.sha256),
                      false);

@@ -26,7 +26,8 @@ std::string newer_message(const Connection& c, int found) {
 
 int known_schema_version() { return static_cast<int>(migrations().size()); }
 
-InitResult init_schema(Connection& c) {
+InitResult init_schema(Connection& c, int target) {
+  if (target <= 0 || target > known_schema_version()) target = known_schema_version();
   InitResult result;
   {
     Transaction t(c);
@@ -37,9 +38,9 @@ InitResult init_schema(Connection& c) {
     result.from = current_version(c);
     t.commit();
   }
-  if (result.from > known_schema_version()) throw StoreError(newer_message(c, result.from), false);
+  if (result.from > known_schema_version()) throw NewerSchemaError(newer_message(c, result.from));
   const auto& steps = migrations();
-  for (int v = result.from + 1; v <= known_schema_version(); ++v) {
+  for (int v = result.from + 1; v <= target; ++v) {
     Transaction t(c);
     c.exec("lock the schema", kLock);
     if (current_version(c) >= v) continue;  // another init applied it meanwhile
@@ -54,7 +55,7 @@ InitResult init_schema(Connection& c) {
 
 void check_schema(Connection& c) {
   const int found = current_version(c);
-  if (found > known_schema_version()) throw StoreError(newer_message(c, found), false);
+  if (found > known_schema_version()) throw NewerSchemaError(newer_message(c, found));
   if (found < known_schema_version()) {
     throw StoreError(fmt::format("store: {} holds schema version {}, this Palpa needs {}: run palpa-cli store init",
                                  c.target(), found, known_schema_version()),

@@ -45,17 +45,18 @@ class Schema(unittest.TestCase):
         return run(self.pg, "store", "push", session, "--store", self.pg.url("palpa", user), "--station", station,
                    "--outbox", self.outbox)
 
-    def test_init_creates_version_1_and_is_idempotent(self):
-        self.assertIn("schema version 1 (was 0)", self.first_init)
+    def test_init_creates_version_2_and_is_idempotent(self):
+        self.assertIn("schema version 2 (was 0)", self.first_init)
         again = run(self.pg, "store", "init", self.pg.url("palpa"))
         self.assertEqual(again.returncode, 0, again.stderr)
         self.assertIn("already up to date", again.stdout)
-        self.assertEqual(self.pg.sql("SELECT version FROM palpa_schema", "palpa"), "1")
+        self.assertEqual(self.pg.sql("SELECT version FROM palpa_schema ORDER BY 1", "palpa").split(), ["1", "2"])
         tables = set(self.pg.sql("SELECT tablename FROM pg_tables WHERE schemaname = 'public'", "palpa").split())
         self.assertTrue({"stations", "trainees", "cases", "sessions", "scores", "work_queue"} <= tables, tables)
         roles = self.pg.sql("SELECT rolname || ':' || rolcanlogin FROM pg_roles WHERE rolname LIKE 'palpa\\_%' "
                             "AND rolname <> 'palpa_admin' ORDER BY 1")
-        self.assertEqual(roles.split(), ["palpa_coordinator:false", "palpa_station:false", "palpa_worker:false"])
+        self.assertEqual(roles.split(), ["palpa_coordinator:false", "palpa_owner:false", "palpa_station:false",
+                                         "palpa_worker:false"])
 
     def test_a_newer_schema_is_refused(self):
         self.pg.sql("CREATE DATABASE newer")
@@ -64,7 +65,7 @@ class Schema(unittest.TestCase):
         res = run(self.pg, "store", "init", self.pg.url("newer"))
         self.assertEqual(res.returncode, 1)
         self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
-        self.assertIn("schema version 99, newer than this Palpa knows (1)", res.stderr)
+        self.assertIn("schema version 99, newer than this Palpa knows (2)", res.stderr)
         self.assertEqual(self.pg.sql("SELECT max(version) FROM palpa_schema", "newer"), "99")
 
     def test_a_station_adds_sessions_and_sees_only_its_own(self):
@@ -89,11 +90,12 @@ class Schema(unittest.TestCase):
         # The coordinator reads everything; a worker may not push.
         self.assertEqual(self.pg.sql("SELECT count(*) FROM sessions", "palpa", "coord"), "2")
         self.assertNotEqual(self.pg.psql("SELECT palpa_push_session(NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, "
-                                         "NULL, NULL, NULL, NULL, NULL)", "palpa", "worker", check=False).returncode, 0)
+                                         "NULL, NULL, NULL, NULL)", "palpa", "worker", check=False).returncode, 0)
         # A station name belongs to the login that first used it.
         stolen = self.push("station_b", "room-a", os.path.join(REPO, "data", "sessions", "light.palpa"))
         self.assertEqual(stolen.returncode, 2)
-        self.assertIn('station "room-a" uploads as login "station_a", not "station_b"', stolen.stderr)
+        self.assertIn('station "room-a" is registered to another login', stolen.stderr)
+        self.assertNotIn("station_a", stolen.stderr)  # a refusal names no other login
 
     def test_a_failed_connection_is_one_line_without_the_password(self):
         closed = pg_test_server.free_port()

@@ -18,7 +18,7 @@ struct PreparedSession {
   std::string file_name;  ///< stored with the session: the file's name, or the name it had before the outbox
   std::string bytes;    ///< the file as it is on disk
   std::string sha256;   ///< of `bytes`, hex
-  std::string session_id, trainee, started_at, mode, case_title, case_sha256;
+  std::string session_id, trainee, started_at, mode, case_title;
   nlohmann::json case_document, events;
   bool complete = false;
   std::uint64_t samples = 0;
@@ -42,6 +42,9 @@ struct PushResult {
 /// A session already stored with the same checksum is AlreadyStored; with another checksum
 /// it is an error. Throws StoreError (unreachable when the connection broke).
 PushResult push_prepared(Connection& c, const PreparedSession& session, const std::string& station);
+
+/// A path as messages show it: control and bidirectional characters escaped, shortened.
+std::string shown(const std::filesystem::path& path);
 
 /// prepare_session + push_prepared.
 PushResult push_session(Connection& c, const std::filesystem::path& path, const std::string& station);

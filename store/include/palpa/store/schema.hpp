@@ -7,6 +7,13 @@
 
 namespace palpa::store {
 
+/// The database holds a schema newer than this Palpa knows: Palpa must be upgraded. A push
+/// queues its sessions then; they go out once this station runs the newer Palpa.
+class NewerSchemaError : public StoreError {
+ public:
+  explicit NewerSchemaError(const std::string& message) : StoreError(message, false) {}
+};
+
 /// The schema version this Palpa writes and reads (the number of migrations it knows).
 int known_schema_version();
 
@@ -18,7 +25,8 @@ struct InitResult {
 /// Creates or migrates the schema, the tables, the roles palpa_station, palpa_worker and
 /// palpa_coordinator and their grants. Idempotent. Throws StoreError when the database's
 /// version is newer than known_schema_version(), or a migration fails (it is rolled back).
-InitResult init_schema(Connection& c);
+/// `target` stops at an older version (tests of the migrations); 0: the newest.
+InitResult init_schema(Connection& c, int target = 0);
 
 /// Throws StoreError unless the database holds exactly the version this Palpa knows
 /// (older: "run palpa-cli store init"; newer: "upgrade Palpa").
