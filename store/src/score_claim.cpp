@@ -1,13 +1,13 @@
 #include "palpa/store/score_claim.hpp"
 
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
+#include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include "palpa/report/session_filter.hpp"
 #include "palpa/score/score.hpp"
+#include "palpa/session/session.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/store/sha256.hpp"
 #include "palpa/version.hpp"
@@ -15,48 +15,26 @@
 namespace palpa::store {
 namespace {
 
-namespace fs = std::filesystem;
+// The first field in which the file and the store's row disagree, or "".
+std::string mismatch(const session::Session& s, const Claim& claim) {
+  if (s.info.id != claim.session_id) return "id";
+  if (s.info.trainee != claim.trainee) return "trainee";
+  if (session::session_mode(s.info) != claim.mode) return "mode";
+  if (static_cast<long long>(s.samples.size()) != claim.samples) return "sample count";
+  const auto started = report::parse_iso8601(s.info.started_at);
+  if (!started || std::abs(*started - claim.started_at_s) > 1.0) return "start date";
+  if (!s.complete) return "end event";
+  const auto stored_case = nlohmann::json::parse(claim.case_document, nullptr, false);
+  if (stored_case.is_discarded() || stored_case != s.info.case_document) return "case";
+  return {};
+}
 
-// A temporary copy of the claimed bytes, removed when it goes out of scope.
-class TempSession {
- public:
-  explicit TempSession(const std::string& bytes) {
-    std::error_code ec;
-    auto dir = fs::temp_directory_path(ec);
-    if (ec) dir = "/tmp";
-    std::string name = (dir / "palpa-worker-XXXXXX.palpa").string();
-    const int fd = mkstemps(name.data(), 6);
-    if (fd < 0) throw StoreError(fmt::format("worker: cannot create a temporary file in {}", dir.string()), false);
-    path_ = name;
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-      const auto n = write(fd, bytes.data() + done, bytes.size() - done);
-      if (n <= 0) break;
-      done += static_cast<std::size_t>(n);
-    }
-    close(fd);
-    if (done != bytes.size()) {
-      fs::remove(path_, ec);
-      throw StoreError(fmt::format("worker: cannot write {}", name), false);
-    }
+ScoreRow score_checked(const session::Session& session, const Claim& claim) {
+  if (const auto field = mismatch(session, claim); !field.empty()) {
+    throw session::SessionError(describe(claim), "meta",
+                                fmt::format("the file's {} differs from what the station sent with it; not scored",
+                                            field));
   }
-  ~TempSession() {
-    std::error_code ec;
-    fs::remove(path_, ec);
-  }
-  TempSession(const TempSession&) = delete;
-  TempSession& operator=(const TempSession&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-}  // namespace
-
-ScoreRow score_claim(const Claim& claim) {
-  const TempSession file(claim.file);
-  const auto session = session::read_session(file.path());
   const auto score = score::score_session(session, claim.file_name);
   ScoreRow row;
   row.scorer_version = palpa::kVersion;
@@ -65,6 +43,12 @@ ScoreRow score_claim(const Claim& claim) {
   row.score = score.score;
   row.passed = score.passed;
   return row;
+}
+
+}  // namespace
+
+ScoreRow score_claim_bytes(const std::string& bytes, const Claim& claim) {
+  return score_checked(session::read_session_bytes(bytes, describe(claim)), claim);
 }
 
 }  // namespace palpa::store

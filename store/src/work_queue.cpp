@@ -1,6 +1,10 @@
 #include "palpa/store/work_queue.hpp"
 
+#include <cstdlib>
+
 #include <fmt/format.h>
+
+#include "palpa/report/printable.hpp"
 
 namespace palpa::store {
 namespace {
@@ -15,9 +19,50 @@ bool end_claim(Connection& c, const Claim& claim, const std::string& owner, cons
   return r.rows() == 1;
 }
 
+// Ends, with their last error, the sessions that were claimed max_score_attempts times and
+// never scored: each claim killed its scorer, or its worker (a lease that ran out).
+void retire_poison(Connection& c) {
+  c.exec("retire sessions that kill their scorer",
+         "UPDATE work_queue w SET done = true, lease_owner = NULL, lease_expires = NULL, "
+         "last_error = 'retired after ' || w.attempts || ' attempts: ' || "
+         "coalesce(w.last_error, 'each claim ended without a score (the worker was killed)') "
+         "WHERE NOT w.done AND w.attempts >= (SELECT max_score_attempts FROM store_settings) "
+         "AND (w.lease_expires IS NULL OR w.lease_expires < now())");
+}
+
+Claim read_claim(Connection& c, long long id) {
+  const auto r = c.exec("read the claimed session",
+                        "SELECT s.session_id, s.file_name, s.file, s.station, t.name, s.mode, "
+                        "extract(epoch FROM s.started_at)::text, s.samples::text, c.document::text "
+                        "FROM sessions s JOIN trainees t ON t.id = s.trainee_id JOIN cases c ON c.id = s.case_id "
+                        "WHERE s.id = $1::bigint",
+                        {Param::text(std::to_string(id))}, true);
+  if (r.rows() != 1) throw StoreError(fmt::format("store: session row {} is gone", id), false);
+  Claim claim;
+  claim.id = id;
+  claim.session_id = r.text(0, 0);
+  claim.file_name = r.text(0, 1);
+  claim.file = r.bytes(0, 2);
+  claim.station = r.text(0, 3);
+  claim.trainee = r.text(0, 4);
+  claim.mode = r.text(0, 5);
+  // A binary result: numbers asked for as text, so they read the same on every platform.
+  claim.started_at_s = std::strtod(r.text(0, 6).c_str(), nullptr);
+  claim.samples = std::strtoll(r.text(0, 7).c_str(), nullptr, 10);
+  claim.case_document = r.text(0, 8);
+  return claim;
+}
+
 }  // namespace
 
+std::string describe(const Claim& claim) {
+  return report::printable(fmt::format("session {} from station {} ({})", claim.session_id, claim.station,
+                                       claim.file_name),
+                           300);
+}
+
 std::optional<Claim> claim_next(Connection& c, const std::string& owner, double lease_s) {
+  retire_poison(c);
   Transaction t(c);
   const auto claimed = c.exec(
       "claim a session",
@@ -29,14 +74,7 @@ std::optional<Claim> claim_next(Connection& c, const std::string& owner, double 
       {Param::text(owner), Param::text(fmt::format("{}", lease_s))});
   if (claimed.rows() == 0) return std::nullopt;
   t.commit();
-  Claim claim;
-  claim.id = claimed.integer(0, 0);
-  const auto r = c.exec("read the claimed session", "SELECT session_id, file_name, file FROM sessions WHERE id = $1::bigint",
-                        {Param::text(std::to_string(claim.id))}, true);
-  claim.session_id = r.text(0, 0);
-  claim.file_name = r.text(0, 1);
-  claim.file = r.bytes(0, 2);
-  return claim;
+  return read_claim(c, claimed.integer(0, 0));
 }
 
 long long pending_count(Connection& c) {
@@ -55,6 +93,14 @@ bool finish_claim(Connection& c, const Claim& claim, const std::string& owner, c
           Param::text(row.result_json), Param::text(owner)});
   t.commit();
   return true;
+}
+
+bool release_claim(Connection& c, const Claim& claim, const std::string& owner, const std::string& error) {
+  const auto r = c.exec("give the claim back",
+                        "UPDATE work_queue SET lease_owner = NULL, lease_expires = NULL, last_error = $3 "
+                        "WHERE session_id = $1::bigint AND lease_owner = $2 AND NOT done RETURNING session_id",
+                        {Param::text(std::to_string(claim.id)), Param::text(owner), Param::text(error)});
+  return r.rows() == 1;
 }
 
 bool fail_claim(Connection& c, const Claim& claim, const std::string& owner, const std::string& error) {
