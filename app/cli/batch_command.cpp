@@ -50,6 +50,10 @@ struct BatchOptions {
   bool force = false;              ///< the outputs of an earlier batch in --out may be replaced
   report::SessionFilter filter;    ///< --since/--until/--case/--trainee: which sessions the outputs cover
   StoreBatchOptions store;         ///< --store: against the centre store (batch_store.cpp)
+  /// --store --out: the station each downloaded file was pushed from (the store's word, not
+  /// the file's extra.station), and the stored sessions that could not be written.
+  std::map<std::string, std::string> station_of;
+  std::vector<report::SkippedFile> not_downloaded;
 };
 
 
@@ -181,6 +185,7 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
   try {
     const auto session = session::read_session(input.file);
     auto header = report::header_of(session.info, input.file);
+    if (const auto it = o.station_of.find(input.file); it != o.station_of.end()) header.station = it->second;
     if (!o.filter.matches(header)) {
       outcome.left_out = true;
       return outcome;
@@ -314,7 +319,7 @@ int run_batch(const BatchOptions& o) {
   std::vector<Outcome> outcomes = score_all(inputs, o, out, output_failure);
 
   std::vector<Scored> scored;
-  std::vector<report::SkippedFile> skipped;
+  std::vector<report::SkippedFile> skipped = o.not_downloaded;
   std::size_t left_out = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     if (outcomes[i].left_out) {
@@ -345,8 +350,12 @@ int run_batch(const BatchOptions& o) {
       o.filter.empty() ? std::string() : fmt::format(", {} outside {}", left_out, o.filter.describe());
   std::fprintf(stderr, "batch: %zu of %zu sessions scored, %zu skipped%s; wrote %s\n", scored.size(), inputs.size(),
                skipped.size(), filtered.c_str(), (out / "summary.csv").c_str());
-  if (inputs.empty()) {
+  if (inputs.empty() && o.store.store.empty()) {
     print_error("no session files found (folders are searched for *.palpa)");
+    return kBadInput;
+  }
+  if (scored.empty()) {  // every empty selection alike: nothing found, or nothing matched the filter
+    print_error(o.filter.empty() ? "no session could be scored" : "no session is " + o.filter.describe());
     return kBadInput;
   }
   return skipped.empty() ? kOk : kBadInput;
@@ -386,9 +395,11 @@ Command add_batch_command(CLI::App& parent) {
             if (!o->store.store.empty()) {
               o->store.jobs = o->jobs;
               o->store.filter = o->filter;
-              return run_store_batch(o->store, o->out, [o](const std::vector<std::string>& files) {
+              return run_store_batch(o->store, o->out, [o](const StoreDownload& d) {
                 auto folder = *o;
-                folder.paths = files;
+                folder.paths = d.files;
+                folder.station_of = d.station_of;
+                folder.not_downloaded = d.skipped;
                 return run_batch(folder);
               });
             }

@@ -16,6 +16,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "isolated_score.hpp"
+#include "palpa/report/printable.hpp"
 #include "palpa/options/number_checks.hpp"
 #include "palpa/report/session_header.hpp"
 #include "palpa/session/session.hpp"
@@ -38,53 +40,81 @@ std::string host_name() {
 
 struct WorkerTally {
   std::mutex mutex;
-  int scored = 0, failed = 0, lost = 0;
+  int scored = 0, failed = 0, killed = 0, lost = 0;
   std::string connection_error;
 };
 
-// Scores one claimed session and records the outcome (scored, not scorable, or lease lost).
-void work_on(store::Connection& c, const store::Claim& claim, const std::string& owner, WorkerTally& tally) {
-  std::string error;
-  store::ScoreRow row;
+// Scores one claimed session in a child process and records the outcome: scored, not
+// scorable (ended with the reason), scorer killed (given back; retired after
+// store_settings.max_score_attempts claims), or lease lost.
+void work_on(store::Connection& c, const store::Claim& claim, const std::string& owner, const ScoreLimits& limits,
+             WorkerTally& tally) {
+  IsolatedScore scored;
   try {
-    row = store::score_claim(claim);
-  } catch (const std::exception& e) {  // session::SessionError, or no temporary file
-    error = e.what();
+    scored = score_in_child(claim, limits);
+  } catch (const store::StoreError& e) {  // no memory file, pipe or process: this machine's trouble
+    scored.error = store::describe(claim) + ": " + e.what();
   }
-  const bool held = error.empty() ? store::finish_claim(c, claim, owner, row)
-                                  : store::fail_claim(c, claim, owner, error);
+  bool held = false;
+  switch (scored.outcome) {
+    case ScoreOutcome::Scored: held = store::finish_claim(c, claim, owner, scored.row); break;
+    case ScoreOutcome::Refused: held = store::fail_claim(c, claim, owner, scored.error); break;
+    case ScoreOutcome::Killed: held = store::release_claim(c, claim, owner, scored.error); break;
+  }
   std::lock_guard lock(tally.mutex);
   if (!held) {
     ++tally.lost;
-    std::printf("lost the lease: session %s (another worker took it over)\n", claim.session_id.c_str());
-  } else if (!error.empty()) {
+    std::printf("lost the lease: %s (another worker took it over)\n", store::describe(claim).c_str());
+  } else if (scored.outcome == ScoreOutcome::Refused) {
     ++tally.failed;
-    std::fprintf(stderr, "palpa-cli: error: session %s: %s\n", claim.session_id.c_str(), error.c_str());
+    print_error(scored.error);
+  } else if (scored.outcome == ScoreOutcome::Killed) {
+    ++tally.killed;
+    print_error(scored.error + " (given back to the queue)");
   } else {
     ++tally.scored;
-    std::printf("scored: session %s (%s): %s %s\n", claim.session_id.c_str(), claim.file_name.c_str(),
-                fmt::format("{:.1f} / 100", 100.0 * row.score).c_str(), row.passed ? "passed" : "failed");
+    std::printf("scored: %s: %s %s\n", store::describe(claim).c_str(),
+                fmt::format("{:.1f} / 100", 100.0 * scored.row.score).c_str(),
+                scored.row.passed ? "passed" : "failed");
   }
   std::fflush(stdout);
 }
 
-// One worker thread: claims, scores and writes until nothing is left (or forever with --follow).
-void worker_loop(const StoreBatchOptions& o, const std::string& owner, WorkerTally& tally) {
-  try {
-    store::Connection c(o.store);
-    store::check_schema(c);
-    for (;;) {
-      if (auto claim = store::claim_next(c, owner, o.lease_s)) {
-        work_on(c, *claim, owner, tally);
-        continue;
-      }
-      // Nothing free: done when nothing is pending, else a lease may expire (a killed worker).
-      if (!o.follow && store::pending_count(c) == 0) return;
-      std::this_thread::sleep_for(std::chrono::milliseconds(o.follow ? 2000 : 250));
+// Claims, scores and writes over `c` until nothing is left (or for ever with --follow).
+void serve(store::Connection& c, const StoreBatchOptions& o, const std::string& owner, WorkerTally& tally) {
+  for (;;) {
+    if (auto claim = store::claim_next(c, owner, o.lease_s)) {
+      work_on(c, *claim, owner, o.limits, tally);
+      continue;
     }
-  } catch (const store::StoreError& e) {
-    std::lock_guard lock(tally.mutex);
-    if (tally.connection_error.empty()) tally.connection_error = e.what();
+    // Nothing free: done when nothing is pending, else a lease may expire (a killed worker).
+    if (!o.follow && store::pending_count(c) == 0) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(o.follow ? 2000 : 250));
+  }
+}
+
+// One worker thread. With --follow a lost server is waited for: reconnects with a backoff
+// of 1, 2, 4 ... 30 s (a restart, a network outage); without it the worker reports and ends.
+void worker_loop(const StoreBatchOptions& o, const std::string& owner, WorkerTally& tally) {
+  int backoff_s = 1;
+  for (;;) {
+    try {
+      store::Connection c(o.store);
+      store::check_schema(c);
+      backoff_s = 1;
+      serve(c, o, owner, tally);
+      return;
+    } catch (const store::StoreError& e) {
+      if (!o.follow || !e.unreachable()) {
+        std::lock_guard lock(tally.mutex);
+        if (tally.connection_error.empty()) tally.connection_error = e.what();
+        return;
+      }
+      std::fprintf(stderr, "batch --worker %s: %s; trying again in %d s\n", owner.c_str(),
+                   report::printable(e.what(), 400).c_str(), backoff_s);
+      std::this_thread::sleep_for(std::chrono::seconds(backoff_s));
+      backoff_s = std::min(2 * backoff_s, 30);
+    }
   }
 }
 
@@ -99,8 +129,9 @@ int run_workers(const StoreBatchOptions& o) {
       pool.emplace_back([&o, &tally, owner = fmt::format("{}:{}", base, k)] { worker_loop(o, owner, tally); });
     }
   }
-  std::fprintf(stderr, "batch --worker %s: %d scored, %d could not be scored, %d leases lost\n", base.c_str(),
-               tally.scored, tally.failed, tally.lost);
+  std::fprintf(stderr,
+               "batch --worker %s: %d scored, %d could not be scored, %d scorers killed (given back), %d leases lost\n",
+               base.c_str(), tally.scored, tally.failed, tally.killed, tally.lost);
   if (!tally.connection_error.empty()) {
     print_error(tally.connection_error);
     return kFailure;
@@ -108,7 +139,8 @@ int run_workers(const StoreBatchOptions& o) {
   return tally.failed > 0 ? kBadInput : kOk;
 }
 
-// Writes `bytes` to `path` unless a file with the same SHA-256 is there already.
+// Writes `bytes` to `path` unless a file with the same SHA-256 is there already; the
+// temporary file is removed on every failure.
 void write_copy(const fs::path& path, const std::string& bytes, const std::string& sha256) {
   std::error_code ec;
   if (fs::exists(path, ec) && store::sha256_hex(store::read_file_bytes(path)) == sha256) return;
@@ -116,9 +148,17 @@ void write_copy(const fs::path& path, const std::string& bytes, const std::strin
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!f.flush()) throw store::StoreError(fmt::format("{}: cannot be written", tmp), false);
+    f.close();
+    if (!f) {
+      fs::remove(tmp, ec);
+      throw store::StoreError(fmt::format("{}: cannot be written", tmp), false);
+    }
   }
-  fs::rename(tmp, path);
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw store::StoreError(fmt::format("{}: cannot be written: {}", path.string(), ec.message()), false);
+  }
 }
 
 // What to ask the store for: the filter's trainee, its dates a day wider each side (a
@@ -132,39 +172,63 @@ store::SessionFilter coarse(const report::SessionFilter& f) {
   return c;
 }
 
-// Downloads the stored sessions the filter may select into OUT/stored/STATION/SESSION_ID.palpa.
-std::vector<std::string> download(store::Connection& c, const fs::path& folder, const report::SessionFilter& filter) {
-  std::vector<std::string> files;
-  for (const auto& s : store::list_sessions(c, coarse(filter))) {
-    std::string station = report::slug(s.station);
-    if (station.empty()) station = "station";
-    const auto dir = folder / station;
-    fs::create_directories(dir);
-    const auto path = dir / (s.session_id + ".palpa");
-    write_copy(path, store::session_file(c, s.id), s.sha256);
-    files.push_back(path.string());
+// A station's folder: its slug and 8 hex digits of its name's SHA-256, so that two names
+// with one slug ("Room 1", "room-1") or none ("<script>") never share a folder.
+std::string station_folder(const std::string& station) {
+  auto slug = report::slug(station);
+  if (slug.empty()) slug = "station";
+  return slug + "-" + store::sha256_hex(station).substr(0, 8);
+}
+
+// OUT/stored/STATION-HASH/ROW.palpa: named from the server's row key and a slug, never
+// from text a station chose, and checked to stay inside `folder` all the same.
+fs::path download_path(const fs::path& folder, const store::StoredSession& s) {
+  const auto path = folder / station_folder(s.station) / fmt::format("{}.palpa", s.id);
+  const auto inside = fs::weakly_canonical(folder);
+  const auto target = fs::weakly_canonical(path);
+  if (std::mismatch(inside.begin(), inside.end(), target.begin(), target.end()).first != inside.end()) {
+    throw store::StoreError(fmt::format("{}: outside {}", path.string(), folder.string()), false);
   }
-  return files;
+  return path;
+}
+
+// Downloads the stored sessions the filter may select. A row that cannot be written is
+// listed with its reason and the rest still come down.
+StoreDownload download(store::Connection& c, const fs::path& folder, const report::SessionFilter& filter) {
+  StoreDownload d;
+  for (const auto& s : store::list_sessions(c, coarse(filter))) {
+    const auto name = report::printable(fmt::format("store session {} from station {}", s.session_id, s.station), 300);
+    try {
+      const auto path = download_path(folder, s);
+      fs::create_directories(path.parent_path());
+      write_copy(path, store::session_file(c, s.id), s.sha256);
+      d.files.push_back(path.string());
+      d.station_of[path.string()] = s.station;
+    } catch (const store::StoreError& e) {
+      if (e.unreachable()) throw;
+      d.skipped.push_back({name, report::printable(e.what(), 400)});
+    } catch (const fs::filesystem_error& e) {
+      d.skipped.push_back({name, report::printable(e.what(), 400)});
+    }
+  }
+  return d;
 }
 
 int run_export(const StoreBatchOptions& o, const std::string& out,
-               const std::function<int(const std::vector<std::string>&)>& folder_batch) {
-  std::vector<std::string> files;
+               const std::function<int(const StoreDownload&)>& folder_batch) {
+  StoreDownload d;
   try {
     store::Connection c(o.store);
     store::check_schema(c);
-    files = download(c, fs::path(out) / "stored", o.filter);
-    std::fprintf(stderr, "batch --store %s: %zu sessions in %s\n", c.target().c_str(), files.size(),
-                 (fs::path(out) / "stored").c_str());
+    d = download(c, fs::path(out) / "stored", o.filter);
+    std::fprintf(stderr, "batch --store %s: %zu sessions in %s%s\n", c.target().c_str(), d.files.size(),
+                 (fs::path(out) / "stored").c_str(),
+                 d.skipped.empty() ? "" : fmt::format(", {} could not be written", d.skipped.size()).c_str());
   } catch (const std::exception& e) {  // StoreError, or a filesystem error
     print_error(e.what());
     return kFailure;
   }
-  if (files.empty()) {
-    print_error(o.filter.empty() ? "the store holds no session" : "no stored session is " + o.filter.describe());
-    return kBadInput;
-  }
-  return folder_batch(files);
+  return folder_batch(d);
 }
 
 }  // namespace
@@ -178,10 +242,16 @@ void add_store_batch_options(CLI::App* app, StoreBatchOptions& o) {
   app->add_option("--lease", o.lease_s, "with --worker: seconds a claimed session is held before another worker may "
                                         "take it over; default 600")
       ->check(options::finite_in(1.0, 86400.0, "s"));
+  app->add_option("--score-memory", o.limits.memory_mb,
+                  "with --worker: MB of memory each session's scorer may use (a child process); default 2048")
+      ->check(CLI::Range(64L, 1048576L));
+  app->add_option("--score-seconds", o.limits.cpu_s,
+                  "with --worker: CPU seconds each session's scorer may use; default 600")
+      ->check(CLI::Range(1L, 86400L));
 }
 
 int run_store_batch(const StoreBatchOptions& o, const std::string& out,
-                    const std::function<int(const std::vector<std::string>&)>& folder_batch) {
+                    const std::function<int(const StoreDownload&)>& folder_batch) {
   if (o.worker) return run_workers(o);
   if (o.follow) {
     print_error("--follow: needs --worker");
@@ -189,6 +259,12 @@ int run_store_batch(const StoreBatchOptions& o, const std::string& out,
   }
   if (out.empty()) {
     print_error("batch --store: give --worker (score) or --out DIR (reports)");
+    return kBadInput;
+  }
+  try {
+    o.filter.validate();  // before anything comes down
+  } catch (const report::FilterError& e) {
+    print_error(e.what());
     return kBadInput;
   }
   return run_export(o, out, folder_batch);

@@ -3,11 +3,14 @@
 // --worker scores the store's unscored sessions; --out DIR writes the folder batch's outputs
 // (summary.csv, learning curves, cohort.html) from the stored sessions.
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "isolated_score.hpp"
+#include "palpa/report/cohort.hpp"
 #include "palpa/report/session_filter.hpp"
 
 namespace palpa::cli {
@@ -18,9 +21,18 @@ struct StoreBatchOptions {
   bool follow = false;    ///< worker: keep polling when nothing is left
   double lease_s = 600.0;
   int jobs = 0;           ///< worker threads (batch's --jobs); 0: all cores
+  ScoreLimits limits;     ///< worker: each session is scored in a child process under these
   /// --out: the batch's own filter; the store is asked for a superset of it (a day wider),
   /// the folder batch then applies it exactly, so both batches select alike.
   report::SessionFilter filter;
+};
+
+/// What came down from the store for the folder batch: the files, the station that pushed
+/// each (the store's word, not the file's), and the rows that could not be written.
+struct StoreDownload {
+  std::vector<std::string> files;
+  std::map<std::string, std::string> station_of;  ///< file -> the station it was pushed from
+  std::vector<report::SkippedFile> skipped;
 };
 
 /// Declares --store, --worker, --follow and --lease on the batch command.
@@ -30,6 +42,6 @@ void add_store_batch_options(CLI::App* app, StoreBatchOptions& o);
 /// OUT/stored/STATION/ and calls `folder_batch` on those files, so the outputs are the
 /// folder batch's own.
 int run_store_batch(const StoreBatchOptions& o, const std::string& out,
-                    const std::function<int(const std::vector<std::string>&)>& folder_batch);
+                    const std::function<int(const StoreDownload&)>& folder_batch);
 
 }  // namespace palpa::cli

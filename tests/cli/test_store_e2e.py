@@ -23,10 +23,17 @@ CLI = REPO = None
 PER_STATION = 3
 
 
-def rows_by_session(summary):
+def rows_by_session(summary, keep_station=False):
+    """summary.csv's rows by session id, without `file` (and `station`: the store's batch
+    takes it from the store, the folder batch from the file, which scripted sessions leave empty)."""
     with open(summary, newline="") as f:
         rows = list(csv.DictReader(f))
-    return {r["session_id"]: {k: v for k, v in r.items() if k != "file"} for r in rows}
+    drop = {"file"} if keep_station else {"file", "station"}
+    return {r["session_id"]: {k: v for k, v in r.items() if k not in drop} for r in rows}
+
+
+def files_under(folder):
+    return [os.path.join(d, n) for d, _, names in os.walk(folder) for n in names]
 
 
 class Centre(unittest.TestCase):
@@ -96,6 +103,15 @@ class Centre(unittest.TestCase):
         self.assertEqual(rows_by_session(os.path.join(out, "summary.csv")),
                          rows_by_session(os.path.join(folder_out, "summary.csv")))
         self.assertTrue(os.path.exists(os.path.join(out, "cohort.html")))
+        # The station column is the store's: the station that pushed each session.
+        pushed_from = {os.path.basename(p)[:-len(".palpa")]: s for s, ps in files.items() for p in ps}
+        by_file = {}
+        for path in sum(files.values(), []):
+            sid = subprocess.run(["sqlite3", path, "SELECT value FROM meta WHERE key = 'id'"], capture_output=True,
+                                 text=True, check=True).stdout.strip()
+            by_file[sid] = "room-" + pushed_from[os.path.basename(path)[:-len(".palpa")]]
+        self.assertEqual({k: r["station"] for k, r in rows_by_session(os.path.join(out, "summary.csv"), True).items()},
+                         by_file)
         self.assertEqual(sorted(os.listdir(os.path.join(out, "trainees"))),
                          sorted(os.listdir(os.path.join(folder_out, "trainees"))))
         # The folder batch's filters select alike (the store is asked for a superset).
@@ -107,9 +123,8 @@ class Centre(unittest.TestCase):
         picked = rows_by_session(os.path.join(out + "-1", "summary.csv"))
         self.assertEqual(picked, rows_by_session(os.path.join(folder_out + "-1", "summary.csv")))
         self.assertEqual({r["trainee"] for r in picked.values()}, {"trainee-001"})
-        self.assertEqual(len(os.listdir(os.path.join(out + "-1", "stored", "room-a"))) +
-                         len(os.listdir(os.path.join(out + "-1", "stored", "room-b"))) +
-                         len(os.listdir(os.path.join(out + "-1", "stored", "room-c"))), len(picked))
+        self.assertEqual(len(files_under(os.path.join(out + "-1", "stored"))), len(picked))
+        self.assertEqual(sorted(os.listdir(os.path.join(out + "-1", "stored")))[0][:len("room-a-")], "room-a-")
 
 
 def main():
