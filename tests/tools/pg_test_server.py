@@ -153,6 +153,13 @@ class PgServer:
         return subprocess.run([psql, "-X", "-q", "-A", "-t", "-v", "ON_ERROR_STOP=1", "-d", self.url(dbname, user),
                                "-c", sql], capture_output=True, text=True, env=self.env(), check=check)
 
+    def psql_stdin(self, sql, dbname="postgres", user=None, check=True):
+        """Like psql() with the SQL on standard input: for statements too long for a command
+        line (large literals) and for text with control characters."""
+        psql = os.path.join(self.bin, "psql")
+        return subprocess.run([psql, "-X", "-q", "-A", "-t", "-v", "ON_ERROR_STOP=1", "-d", self.url(dbname, user)],
+                              input=sql, capture_output=True, text=True, env=self.env(), check=check)
+
     def sql(self, sql, dbname="postgres", user=None):
         return self.psql(sql, dbname, user).stdout.strip()
 
