@@ -32,6 +32,10 @@ if(PALPA_SANITIZE)
 endif()
 add_test(NAME cli.hostile_sessions COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_hostile_sessions.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} ${hostile_sanitized})
+# Scoring reads the samples as a stream: millions of ticks in a 1 GB address space
+# (PALPA_LONG_TESTS=1 adds the 72 million of a 20-hour session).
+add_test(NAME cli.stream_scoring COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_stream_scoring.py
+         --cli ${cli} --repo ${PROJECT_SOURCE_DIR} ${hostile_sanitized})
 add_test(NAME cli.batch COMMAND ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/test_batch_cli.py
          --cli ${cli} --repo ${PROJECT_SOURCE_DIR} --make-sessions $<TARGET_FILE:make_test_sessions>)
 

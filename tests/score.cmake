@@ -8,8 +8,10 @@ add_executable(score_tests
   core/score/score_coverage_test.cpp
   core/score/score_session_test.cpp
   core/score/score_pattern_test.cpp
+  core/score/score_stream_test.cpp
 )
-target_link_libraries(score_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
+find_package(SQLite3 REQUIRED)  # score_stream_test edits copies of sessions (events, damage)
+target_link_libraries(score_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)
 target_compile_definitions(score_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(score_tests)
 gtest_discover_tests(score_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

@@ -183,21 +183,33 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     return outcome;
   }
   try {
-    const auto session = session::read_session(input.file);
-    auto header = report::header_of(session.info, input.file);
+    // The samples as a stream (memory that of the case, however long the session), all of
+    // them only for the report's force plot.
+    session::SampleStream stream(input.file);
+    auto header = report::header_of(stream.head().info, input.file);
     if (const auto it = o.station_of.find(input.file); it != o.station_of.end()) header.station = it->second;
     if (!o.filter.matches(header)) {
+      // Read through all the same: a damaged file is reported whatever the filter.
+      while (!stream.next().empty()) {
+      }
       outcome.left_out = true;
       return outcome;
     }
-    auto score = score::score_session(session, input.file);
+    score::Score score;
     if (o.reports) {
+      session::Session session = stream.head();
+      for (auto block = stream.next(); !block.empty(); block = stream.next()) {
+        session.samples.insert(session.samples.end(), block.begin(), block.end());
+      }
+      score = score::score_session(session, input.file);
       try {
         report::write_session_report(sessions_dir, input.stem, header, session, score,
                                      {true, true, true, false});
       } catch (const std::exception& e) {
         output_error = e.what();
       }
+    } else {
+      score = score::score_stream(stream, input.file);
     }
     score.maps.clear();  // the batch keeps only what its tables need
     score.maps.shrink_to_fit();

@@ -26,6 +26,21 @@ struct ScoreOptions {
 
 int run_score(const ScoreOptions& o) { return score_and_report(o.session, o.json, o.report); }
 
+// Reads and scores a session. Without report files the samples are read as a stream and
+// `session` gets no samples: memory stays that of the case however long the session is.
+// The report's force plot draws every sample, so with report files they are all read.
+void read_and_score(const std::filesystem::path& path, bool with_samples, session::Session& session,
+                    score::Score& score) {
+  if (with_samples) {
+    session = session::read_session(path);
+    score = score::score_session(session, path.string());
+    return;
+  }
+  session::SampleStream stream(path);
+  score = score::score_stream(stream, path.string());
+  session = stream.head();
+}
+
 }  // namespace
 
 std::string report_refusal(const std::filesystem::path& session, const ReportRequest& request,
@@ -45,8 +60,7 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
   session::Session session;
   score::Score score;
   try {
-    session = session::read_session(path);
-    score = score::score_session(session, path.string());
+    read_and_score(path, !report_dir.empty(), session, score);
   } catch (const session::SessionError& e) {
     print_error(e.what());
     return kBadInput;

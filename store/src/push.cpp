@@ -41,9 +41,15 @@ PreparedSession prepare_session(const fs::path& path) {
   p.path = path;
   p.file_name = path.filename().string();
   p.bytes = read_file_bytes(path);
+  // Read as a stream: every sample checked, none kept (a long session needs no more memory).
   session::Session s;
+  std::uint64_t samples = 0;
   try {
-    s = session::read_session(path);
+    session::SampleStream stream(path);
+    while (!stream.next().empty()) {
+    }
+    s = stream.head();
+    samples = stream.count();
   } catch (const session::SessionError& e) {
     throw StoreError(e.what(), false);
   }
@@ -61,7 +67,7 @@ PreparedSession prepare_session(const fs::path& path) {
   p.case_title = s.info.case_document.value("title", std::string());
   p.events = events_json(s.events);
   p.complete = s.complete;
-  p.samples = s.samples.size();
+  p.samples = samples;
   check_pushable(p);
   return p;
 }

@@ -15,12 +15,12 @@
 namespace palpa::store {
 namespace {
 
-// The first field in which the file and the store's row disagree, or "".
+// The first field of the file's head (all but the samples) in which the file and the
+// store's row disagree, or "".
 std::string mismatch(const session::Session& s, const Claim& claim) {
   if (s.info.id != claim.session_id) return "id";
   if (s.info.trainee != claim.trainee) return "trainee";
   if (session::session_mode(s.info) != claim.mode) return "mode";
-  if (static_cast<long long>(s.samples.size()) != claim.samples) return "sample count";
   const auto started = report::parse_iso8601(s.info.started_at);
   if (!started || std::abs(*started - claim.started_at_s) > 1.0) return "start date";
   if (!s.complete) return "end event";
@@ -29,13 +29,16 @@ std::string mismatch(const session::Session& s, const Claim& claim) {
   return {};
 }
 
-ScoreRow score_checked(const session::Session& session, const Claim& claim) {
-  if (const auto field = mismatch(session, claim); !field.empty()) {
-    throw session::SessionError(describe(claim), "meta",
-                                fmt::format("the file's {} differs from what the station sent with it; not scored",
-                                            field));
-  }
-  const auto score = score::score_session(session, claim.file_name);
+[[noreturn]] void refuse(const Claim& claim, const std::string& field) {
+  throw session::SessionError(
+      describe(claim), "meta", fmt::format("the file's {} differs from what the station sent with it; not scored", field));
+}
+
+// Scores as a stream: memory bounded by the case, whatever the number of ticks.
+ScoreRow score_checked(session::SampleStream& stream, const Claim& claim) {
+  if (const auto field = mismatch(stream.head(), claim); !field.empty()) refuse(claim, field);
+  const auto score = score::score_stream(stream, claim.file_name);
+  if (static_cast<long long>(stream.count()) != claim.samples) refuse(claim, "sample count");
   ScoreRow row;
   row.scorer_version = palpa::kVersion;
   row.thresholds_sha256 = sha256_hex(score::to_json(score.thresholds).dump());
@@ -48,7 +51,8 @@ ScoreRow score_checked(const session::Session& session, const Claim& claim) {
 }  // namespace
 
 ScoreRow score_claim_bytes(const std::string& bytes, const Claim& claim) {
-  return score_checked(session::read_session_bytes(bytes, describe(claim)), claim);
+  session::SampleStream stream(bytes, describe(claim));
+  return score_checked(stream, claim);
 }
 
 }  // namespace palpa::store

@@ -23,24 +23,40 @@ SamplePass::SamplePass(ExamGrids& exam, const std::vector<Landing>& mark_tops, c
       dt_cap_(kMaxGapPeriods / rate_),
       palpate2_(thresholds.palpate_radius * thresholds.palpate_radius) {}
 
-void SamplePass::run(const std::vector<engine::Sample>& samples) {
-  const int body_count = static_cast<int>(exam_.grids.size());
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    const engine::Sample& s = samples[k];
-    const double force = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
-    peak_force_n = std::max(peak_force_n, force);
-    const bool active = is_active(s);
-    if (active && s.body >= body_count) ++ignored;
-    // Non-finite parameters cannot be placed on the grid: such a sample is not contact.
-    const bool contact = active && s.body >= 0 && s.body < body_count && std::isfinite(s.u) && std::isfinite(s.v);
-    if (!contact) {
-      lift_off();
-      continue;
-    }
-    const double dt = std::clamp(k + 1 < samples.size() ? samples[k + 1].t - s.t : 1.0 / rate_, 0.0, dt_cap_);
-    touch(s, dt, force);
-  }
+void SamplePass::run(std::span<const engine::Sample> samples) {
+  add(samples);
+  finish();
+}
+
+void SamplePass::add(std::span<const engine::Sample> samples) {
+  if (samples.empty()) return;
+  if (held_) measure(*held_, samples.front().t - held_->t);
+  for (std::size_t k = 0; k + 1 < samples.size(); ++k) measure(samples[k], samples[k + 1].t - samples[k].t);
+  held_ = samples.back();
+  sample_count += samples.size();
+  last_t = samples.back().t;
+}
+
+void SamplePass::finish() {
+  if (held_) measure(*held_, 1.0 / rate_);
+  held_.reset();
   flush();
+}
+
+// One sample; `dt_to_next` is the step to the next sample (one period for the last).
+void SamplePass::measure(const engine::Sample& s, double dt_to_next) {
+  const int body_count = static_cast<int>(exam_.grids.size());
+  const double force = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
+  peak_force_n = std::max(peak_force_n, force);
+  const bool active = is_active(s);
+  if (active && s.body >= body_count) ++ignored;
+  // Non-finite parameters cannot be placed on the grid: such a sample is not contact.
+  const bool contact = active && s.body >= 0 && s.body < body_count && std::isfinite(s.u) && std::isfinite(s.v);
+  if (!contact) {
+    lift_off();
+    return;
+  }
+  touch(s, std::clamp(dt_to_next, 0.0, dt_cap_), force);
 }
 
 double SamplePass::palpate_search_ratio() const {

@@ -1,9 +1,12 @@
 #pragma once
 // One pass over a session's samples (docs/scoring.md): active time, contact, pressure
 // levels, coverage stamps and dwell, peak force, the contact path, and the force near
-// the marks against the force elsewhere.
+// the marks against the force elsewhere. The samples may come in pieces (a session read as
+// a stream): the pass keeps what it measures, never the samples.
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "exam_grids.hpp"
@@ -19,20 +22,28 @@ class SamplePass {
   SamplePass(ExamGrids& exam, const std::vector<Landing>& mark_tops, const Timeline& timeline,
              const Thresholds& thresholds, double rate_hz);
 
-  /// Runs over `samples` in order (the pass is made once).
-  void run(const std::vector<engine::Sample>& samples);
+  /// Runs over `samples` in order (the pass is made once): add(samples), then finish().
+  void run(std::span<const engine::Sample> samples);
+  /// Takes the next samples in order. A sample's contact time is the step to the next one,
+  /// so the last sample given is held (copied) until more come or finish().
+  void add(std::span<const engine::Sample> samples);
+  /// After the last add(): measures the held sample with one period and closes the stamp.
+  void finish();
 
   double peak_force_n = 0.0;   ///< over every sample: safety is about what was applied
   double contact_time_s = 0.0;
   PressureLevels pressure;
   std::vector<PathPoint> path;
   std::size_t ignored = 0;     ///< active samples naming a body the case does not have
+  std::uint64_t sample_count = 0;  ///< how many were given
+  std::optional<double> last_t;  ///< the last sample's time (none given: nothing)
 
   /// Mean force within the palpate radius of a mark over the mean force elsewhere; 0 when
   /// either is missing.
   double palpate_search_ratio() const;
 
  private:
+  void measure(const engine::Sample& s, double dt_to_next);
   bool is_active(const engine::Sample& s);
   void lift_off();
   void touch(const engine::Sample& s, double dt, double force);
@@ -51,6 +62,7 @@ class SamplePass {
   double palpate2_;
 
   std::vector<int> stamped_;  // cells the current stamp covered
+  std::optional<engine::Sample> held_;  // the last sample given, measured when the next comes
   std::size_t pause_index_ = 0;
   bool was_contact_ = false, have_stamp_ = false;
   int stamp_body_ = -1, piece_ = 0;

@@ -1,6 +1,7 @@
 #include "palpa/score/score.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <optional>
 
 #include "../common/numeric.hpp"
@@ -111,7 +112,7 @@ void measure_area_and_pattern(const detail::ExamGrids& exam, const detail::Sampl
   out.pattern.kind = detail::classify_pattern(out.pattern, out.contact_time_s > 0.0, out.coverage, area.compact, th);
 }
 
-void judge(const session::Session& session, const Timeline& tl, const TopPoints& tops, std::size_t ignored,
+void judge(const session::Session& session, const Timeline& tl, const TopPoints& tops, const detail::SamplePass& pass,
            const Thresholds& th, Score& out) {
   out.safe = out.peak_force_n <= th.max_force;
   out.short_exam = out.duration_s < th.min_duration;
@@ -120,42 +121,89 @@ void judge(const session::Session& session, const Timeline& tl, const TopPoints&
   out.subscores = detail::subscores_of(out, th);
   for (const auto& s : out.subscores) out.score += s.weight * s.value;
   if (out.abandoned) out.passed = false;  // not an exam
-  detail::add_notes(out, session, tl, ignored, th);
+  detail::add_notes(out, session.complete, pass.last_t, tl, pass.ignored, th);
 }
 
-}  // namespace
-
-Score score_session(const session::Session& session, const std::string& source) {
+Thresholds thresholds_of(const session::Session& session, const std::string& source) {
   std::vector<io::Problem> problems;
   const Thresholds thresholds = thresholds_from_case(session.info.case_document, problems);
   if (!problems.empty()) {
     throw session::SessionError(source, "meta case", problems.front().where + ": " + problems.front().reason);
   }
-  return score_session(session, source, thresholds);
+  return thresholds;
 }
 
-Score score_session(const session::Session& session, const std::string& source, const Thresholds& th) {
-  const PalpatedCase palpated = palpated_case(session, source);
+// Hands the samples to the pass, in order, in as many pieces as it likes.
+using Feed = std::function<void(detail::SamplePass&)>;
+
+// Everything after the case: `session` without its samples (info, events), which `feed`
+// gives; `times` are their first and last time (nothing: no samples).
+Score score_samples(const session::Session& session, const PalpatedCase& palpated, const Thresholds& th,
+                    const std::optional<session::SampleTimes>& times, const Feed& feed) {
   const scene::Scene& scene = *palpated.scene;
   Score out;
   out.thresholds = th;
   out.complete = session.complete;
   out.abandoned = session::is_abandoned(session);
-  out.samples = session.samples.size();
 
   detail::ExamGrids exam(scene, th, out.notes);
   TopPoints tops = mark_results(session, scene, out);
   tumour_results(palpated.file, scene, th, tops, out);
   match_and_count(tops, th, out);
 
-  const Timeline tl = detail::timeline_of(session);
+  const Timeline tl = detail::timeline_of(session.events, times);
   detail::SamplePass pass(exam, tops.marks, tl, th, session.info.rate_hz);
-  pass.run(session.samples);
+  feed(pass);
+  pass.finish();
+  out.samples = pass.sample_count;
   take_pass(pass, tl, out);
   measure_area_and_pattern(exam, pass, th, out);
-  judge(session, tl, tops, pass.ignored, th, out);
+  judge(session, tl, tops, pass, th, out);
   out.maps = detail::coverage_maps(scene, exam);
   return out;
+}
+
+std::optional<session::SampleTimes> times_of(const std::vector<engine::Sample>& samples) {
+  if (samples.empty()) return std::nullopt;
+  return session::SampleTimes{samples.front().t, samples.back().t};
+}
+
+// A case the reader accepted but scoring cannot use is reported after the samples were
+// read and checked, as when they were all read first: a file with a bad sample as well
+// gets the sample's message, whichever way it is scored.
+template <class Make>
+auto after_the_samples(session::SampleStream& stream, Make&& make) {
+  try {
+    return make();
+  } catch (const session::SessionError&) {
+    while (!stream.next().empty()) {
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
+Score score_session(const session::Session& session, const std::string& source) {
+  return score_session(session, source, thresholds_of(session, source));
+}
+
+Score score_session(const session::Session& session, const std::string& source, const Thresholds& th) {
+  const PalpatedCase palpated = palpated_case(session, source);
+  return score_samples(session, palpated, th, times_of(session.samples),
+                       [&](detail::SamplePass& pass) { pass.add(session.samples); });
+}
+
+Score score_stream(session::SampleStream& stream, const std::string& source) {
+  const Thresholds th = after_the_samples(stream, [&] { return thresholds_of(stream.head(), source); });
+  return score_stream(stream, source, th);
+}
+
+Score score_stream(session::SampleStream& stream, const std::string& source, const Thresholds& th) {
+  const PalpatedCase palpated = after_the_samples(stream, [&] { return palpated_case(stream.head(), source); });
+  return score_samples(stream.head(), palpated, th, stream.sample_times(), [&](detail::SamplePass& pass) {
+    for (auto block = stream.next(); !block.empty(); block = stream.next()) pass.add(block);
+  });
 }
 
 }  // namespace palpa::score

@@ -5,7 +5,8 @@
 namespace palpa::score::detail {
 namespace {
 
-void find_start_and_end(const session::Session& s, const std::vector<session::Event>& events, Timeline& tl) {
+void find_start_and_end(const std::optional<session::SampleTimes>& samples, const std::vector<session::Event>& events,
+                        Timeline& tl) {
   bool have_start = false, have_end = false;
   for (const auto& e : events) {
     if (e.kind == session::EventKind::Start && !have_start) {
@@ -17,8 +18,8 @@ void find_start_and_end(const session::Session& s, const std::vector<session::Ev
       have_end = true;
     }
   }
-  if (!have_start) tl.start = s.samples.empty() ? 0.0 : s.samples.front().t;
-  if (!have_end) tl.end = s.samples.empty() ? tl.start : s.samples.back().t;
+  if (!have_start) tl.start = samples ? samples->first : 0.0;
+  if (!have_end) tl.end = samples ? samples->last : tl.start;
   tl.end = std::max(tl.end, tl.start);
 }
 
@@ -44,11 +45,12 @@ void find_pauses(const std::vector<session::Event>& events, Timeline& tl) {
 
 }  // namespace
 
-Timeline timeline_of(const session::Session& s) {
+Timeline timeline_of(const std::vector<session::Event>& session_events,
+                     const std::optional<session::SampleTimes>& samples) {
   Timeline tl;
-  std::vector<session::Event> events = s.events;
+  std::vector<session::Event> events = session_events;
   std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
-  find_start_and_end(s, events, tl);
+  find_start_and_end(samples, events, tl);
   find_pauses(events, tl);
   tl.active = tl.end - tl.start;
   for (const auto& [a, b] : tl.pauses) tl.active -= b - a;

@@ -1,9 +1,11 @@
 #pragma once
 // The active part of a session: start to end minus pauses (docs/scoring.md, "Duration").
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "palpa/session/session.hpp"
+#include "palpa/session/session_reader.hpp"
 
 namespace palpa::score::detail {
 
@@ -14,7 +16,8 @@ struct Timeline {
 };
 
 /// From the first Start and End events (the first and last sample when one is missing)
-/// and the Pause/Resume pairs between them; a pause left open runs to the end.
-Timeline timeline_of(const session::Session& session);
+/// and the Pause/Resume pairs between them; a pause left open runs to the end. `samples`:
+/// the first and last sample's time, nothing when there are none.
+Timeline timeline_of(const std::vector<session::Event>& events, const std::optional<session::SampleTimes>& samples);
 
 }  // namespace palpa::score::detail

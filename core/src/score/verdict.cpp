@@ -144,14 +144,14 @@ std::vector<SubScore> subscores_of(const Score& out, const Thresholds& th) {
   return subscores;
 }
 
-void add_notes(Score& out, const session::Session& session, const Timeline& tl, std::size_t ignored,
+void add_notes(Score& out, bool complete, std::optional<double> last_t, const Timeline& tl, std::size_t ignored,
                const Thresholds& th) {
   if (out.abandoned) out.notes.push_back("abandoned by the trainee: not an exam, left out of learning curves");
-  if (!session.complete) {
-    out.notes.push_back(fmt::format("session incomplete (no end event): scored up to t = {:.1f} s",
-                                    session.samples.empty() ? tl.end : session.samples.back().t));
+  if (!complete) {
+    out.notes.push_back(
+        fmt::format("session incomplete (no end event): scored up to t = {:.1f} s", last_t.value_or(tl.end)));
   }
-  if (session.samples.empty()) out.notes.push_back("no samples recorded");
+  if (!last_t) out.notes.push_back("no samples recorded");
   if (out.short_exam) {
     out.notes.push_back(fmt::format("short exam: {:.0f} s of active time (at least {:.0f} s expected)", out.duration_s,
                                     th.min_duration));

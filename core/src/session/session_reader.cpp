@@ -24,18 +24,31 @@ namespace {
 std::string hex32(std::uint32_t value) { return fmt::format("0x{:08X}", value); }
 
 /// Reads one session file; every failure is a SessionError naming the file and the place.
+/// read_head() reads everything but the samples, then read_more() hands them over a block
+/// at a time (SampleStream), or all of them into one vector (read_session).
 class Reader {
  public:
   Reader(const std::filesystem::path& path) : file_(path.string()) {}
   /// A whole session file held in memory, named `name` in errors.
   Reader(const std::string& name, const std::string& bytes) : file_(name), bytes_(&bytes) {}
   ~Reader() {
+    samples_query_.reset();  // finalized before the connection closes
     if (db_ != nullptr) sqlite3_close_v2(db_);
   }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
 
-  Session read(const std::filesystem::path& path, const ReadOptions& options);
+  /// Opens the file and reads meta and events in a read transaction. With
+  /// options.samples, checks the sample count and leaves the transaction open for
+  /// read_more(); without, ends it.
+  Session read_head(const std::filesystem::path& path, const ReadOptions& options);
+  /// Appends the next samples to `out`: one block (format 2) or up to kRowsPerRead rows
+  /// (format 1), every check made. False, with nothing appended, once all were read (the
+  /// transaction then ends).
+  bool read_more(std::vector<engine::Sample>& out);
+  /// The file's sample count, capped for a reservation (count_samples).
+  std::int64_t reserve_hint() const { return reserve_hint_; }
+  std::optional<SampleTimes> sample_times();
 
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
@@ -57,9 +70,12 @@ class Reader {
   bool has_table(const char* name);
   void read_meta(Session& session);
   void read_events(Session& session);
-  void read_samples(Session& session, std::int64_t max_samples);
-  void read_blocks(Session& session, std::int64_t max_samples);
+  void start_samples(std::int64_t max_samples);
+  bool read_rows(std::vector<engine::Sample>& out, bool& at_end);
+  bool read_block(std::vector<engine::Sample>& out);
+  void end_transaction();
   std::int64_t count_samples(const char* sql, std::int64_t max_samples);
+  std::optional<double> peek_time(bool last);
   template <typename Where>
   void check_contact(engine::Sample& s, const Where& where) const;
   template <typename Where>
@@ -81,7 +97,7 @@ class Reader {
   }
 
   std::string file_;
-  const std::string* bytes_ = nullptr;  // the file's bytes when read from memory (read_session_bytes)
+  const std::string* bytes_ = nullptr;  // the file's bytes when read from memory (SampleStream from bytes)
   bool wal_header_ = false;  // the file header says WAL mode: it needs its -wal and -shm
   bool wal_absent_ = false;  // ... and before opening, its -wal was missing or empty
   detail::JournalBeside journal_ = detail::JournalBeside::None;
@@ -89,6 +105,12 @@ class Reader {
   int version_ = 1;  // meta format_version: 1 (samples rows) or 2 (sample_blocks)
   std::size_t bodies_ = 0;  // in the session's case: a sample's body index must be below it
   std::vector<double> thickness_;  // m, per body: 2 x its largest radius, the deepest press it has
+  // Where read_more() has got to: the samples' query (reset at the end), the last tick and
+  // time read (the next must follow them), how many were read.
+  std::optional<detail::Statement> samples_query_;
+  std::int64_t max_samples_ = 0, reserve_hint_ = 0, read_ = 0, previous_tick_ = -1;
+  double previous_t_ = -std::numeric_limits<double>::infinity();
+  std::vector<std::int64_t> ticks_;  // the ticks of the block being read
 };
 
 void Reader::fail_wal_missing() const {
@@ -492,29 +514,60 @@ void Reader::check_contact(engine::Sample& s, const Where& where) const {
   }
 }
 
-void Reader::read_samples(Session& session, std::int64_t max_samples) {
+// Format 1 reads this many rows a call: about what a format-2 block holds.
+constexpr int kRowsPerRead = 1024;
+
+void Reader::start_samples(std::int64_t max_samples) {
   static constexpr const char* kColumns =
-      "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples";
-  session.samples.reserve(static_cast<std::size_t>(count_samples("SELECT count(*) FROM samples", max_samples)));
-  auto query = prepare("samples", (std::string(kColumns) + " ORDER BY tick").c_str());
-  Row row{file_, query.get(), "samples", "tick"};
+      "SELECT tick, t, x, y, z, fx, fy, fz, body, u, v, depth, buttons, overrun, fault FROM samples ORDER BY tick";
+  max_samples_ = max_samples;
+  if (version_ >= 2) {
+    reserve_hint_ = count_samples("SELECT total(count) FROM sample_blocks", max_samples);
+    samples_query_.emplace(
+        prepare("sample_blocks", "SELECT first_tick, count, data FROM sample_blocks ORDER BY first_tick"));
+  } else {
+    reserve_hint_ = count_samples("SELECT count(*) FROM samples", max_samples);
+    samples_query_.emplace(prepare("samples", kColumns));
+  }
+}
+
+bool Reader::read_more(std::vector<engine::Sample>& out) {
+  if (!samples_query_) return false;
+  bool at_end = false;
+  const bool more = version_ >= 2 ? read_block(out) : read_rows(out, at_end);
+  // Ended at once: stepping a finished query again would start it over.
+  if (!more || at_end) end_transaction();
+  return more;
+}
+
+// The samples were all read: the snapshot is no longer needed.
+void Reader::end_transaction() {
+  samples_query_.reset();
+  std::string error;
+  if (const int rc = detail::exec(db_, "COMMIT", error); rc != SQLITE_OK) fail_sqlite("file", rc);
+}
+
+// Format 1: rows in tick order, every column checked; `at_end` when the last was read.
+bool Reader::read_rows(std::vector<engine::Sample>& out, bool& at_end) {
+  sqlite3_stmt* query = samples_query_->get();
+  Row row{file_, query, "samples", "tick"};
   const auto where_in_row = [&row](const char* column) { return row.where(column); };
   const auto max_body = static_cast<std::int64_t>(bodies_) - 1;
-  std::int64_t previous_tick = -1;
-  double previous_t = -std::numeric_limits<double>::infinity();
-  std::string where = "samples";
-  while (true) {
-    const int rc = sqlite3_step(query.get());
-    if (rc == SQLITE_DONE) break;
-    if (rc != SQLITE_ROW) {
-      if (previous_tick >= 0) where = fmt::format("samples after tick {}", previous_tick);
-      fail_sqlite(where, rc);
+  int rows = 0;
+  for (; rows < kRowsPerRead; ++rows) {
+    const int rc = sqlite3_step(query);
+    if (rc == SQLITE_DONE) {
+      at_end = true;
+      break;
     }
-    row.key = sqlite3_column_int64(query.get(), 0);
-    row.integer(0, "tick", previous_tick + 1, kInt64Max);
+    if (rc != SQLITE_ROW) {
+      fail_sqlite(previous_tick_ >= 0 ? fmt::format("samples after tick {}", previous_tick_) : "samples", rc);
+    }
+    row.key = sqlite3_column_int64(query, 0);
+    row.integer(0, "tick", previous_tick_ + 1, kInt64Max);
     engine::Sample s;
     s.t = row.real(1, "t");
-    check_time(s.t, previous_t, where_in_row);
+    check_time(s.t, previous_t_, where_in_row);
     s.position = {row.real(2, "x"), row.real(3, "y"), row.real(4, "z")};
     s.force = {row.real(5, "fx"), row.real(6, "fy"), row.real(7, "fz")};
     if (!row.is_null(8)) {
@@ -528,59 +581,91 @@ void Reader::read_samples(Session& session, std::int64_t max_samples) {
     s.buttons = static_cast<std::uint32_t>(row.integer(12, "buttons", 0, std::numeric_limits<std::uint32_t>::max()));
     s.overrun = row.integer(13, "overrun", 0, 1) != 0;
     s.fault = row.integer(14, "fault", 0, 1) != 0;
-    previous_tick = row.key;
-    previous_t = s.t;
-    session.samples.push_back(s);
+    previous_tick_ = row.key;
+    previous_t_ = s.t;
+    out.push_back(s);
   }
+  read_ += rows;
+  return rows > 0;
 }
 
 // Format 2: blocks in tick order, each decoded (sample_blocks.hpp) and its ticks checked
 // like format 1's rows. A block's messages name it: "sample_blocks first_tick 2048: ...".
-void Reader::read_blocks(Session& session, std::int64_t max_samples) {
-  session.samples.reserve(
-      static_cast<std::size_t>(count_samples("SELECT total(count) FROM sample_blocks", max_samples)));
-  auto query = prepare("sample_blocks", "SELECT first_tick, count, data FROM sample_blocks ORDER BY first_tick");
-  Row row{file_, query.get(), "sample_blocks", "first_tick"};
-  std::vector<std::int64_t> ticks;
-  std::int64_t previous_tick = -1, tick = 0;
-  double previous_t = -std::numeric_limits<double>::infinity();
+bool Reader::read_block(std::vector<engine::Sample>& out) {
+  if (!step(*samples_query_, "sample_blocks")) return false;
+  sqlite3_stmt* query = samples_query_->get();
+  Row row{file_, query, "sample_blocks", "first_tick"};
+  std::int64_t tick = 0;
   const auto where_in_block = [&](const char* column) {
     return fmt::format("sample_blocks first_tick {}: tick {}: column {}", row.key, tick, column);
   };
-  while (step(query, "sample_blocks")) {
-    row.key = sqlite3_column_int64(query.get(), 0);
-    const std::int64_t count = row.integer(1, "count", 1, detail::kMaxBlockTicks);
-    if (static_cast<std::int64_t>(session.samples.size()) + count > max_samples) {
-      fail("sample_blocks", fmt::format("more samples than a session may hold ({})", max_samples));
-    }
-    if (sqlite3_column_type(query.get(), 2) != SQLITE_BLOB) fail(row.where("data"), "not a blob");
-    const std::size_t first = session.samples.size();
-    ticks.clear();
-    try {
-      detail::decode_block(sqlite3_column_blob(query.get(), 2), static_cast<std::size_t>(sqlite3_column_bytes(query.get(), 2)),
-                           count, ticks, session.samples);
-    } catch (const std::runtime_error& e) {
-      fail(row.where(nullptr), e.what());
-    }
-    if (ticks.front() != row.key) fail(row.where(nullptr), fmt::format("its first tick is {}", ticks.front()));
-    for (std::size_t k = 0; k < ticks.size(); ++k) {
-      tick = ticks[k];
-      auto& s = session.samples[first + k];
-      if (tick <= previous_tick) fail(where_in_block("tick"), fmt::format("not after tick {}", previous_tick));
-      check_time(s.t, previous_t, where_in_block);
-      if (s.body >= 0) {
-        if (static_cast<std::size_t>(s.body) >= bodies_) {
-          fail(where_in_block("body"), fmt::format("the case has {} bodies, there is no body {}", bodies_, s.body));
-        }
-        check_contact(s, where_in_block);
-      }
-      previous_tick = tick;
-      previous_t = s.t;
-    }
+  row.key = sqlite3_column_int64(query, 0);
+  const std::int64_t count = row.integer(1, "count", 1, detail::kMaxBlockTicks);
+  if (read_ + count > max_samples_) {
+    fail("sample_blocks", fmt::format("more samples than a session may hold ({})", max_samples_));
   }
+  if (sqlite3_column_type(query, 2) != SQLITE_BLOB) fail(row.where("data"), "not a blob");
+  const std::size_t first = out.size();
+  ticks_.clear();
+  try {
+    detail::decode_block(sqlite3_column_blob(query, 2), static_cast<std::size_t>(sqlite3_column_bytes(query, 2)),
+                         count, ticks_, out);
+  } catch (const std::runtime_error& e) {
+    fail(row.where(nullptr), e.what());
+  }
+  if (ticks_.front() != row.key) fail(row.where(nullptr), fmt::format("its first tick is {}", ticks_.front()));
+  for (std::size_t k = 0; k < ticks_.size(); ++k) {
+    tick = ticks_[k];
+    auto& s = out[first + k];
+    if (tick <= previous_tick_) fail(where_in_block("tick"), fmt::format("not after tick {}", previous_tick_));
+    check_time(s.t, previous_t_, where_in_block);
+    if (s.body >= 0) {
+      if (static_cast<std::size_t>(s.body) >= bodies_) {
+        fail(where_in_block("body"), fmt::format("the case has {} bodies, there is no body {}", bodies_, s.body));
+      }
+      check_contact(s, where_in_block);
+    }
+    previous_tick_ = tick;
+    previous_t_ = s.t;
+  }
+  read_ += count;
+  return true;
 }
 
-Session Reader::read(const std::filesystem::path& path, const ReadOptions& options) {
+// The time of the first (or last) sample, read out of order and unchecked: nothing when it
+// cannot be read. The checked reading in order (read_more) reports what is wrong; where it
+// succeeds, the sample it ends with (or starts with) is this one, for ticks strictly increase.
+std::optional<double> Reader::peek_time(bool last) {
+  const char* order = last ? " DESC LIMIT 1" : " LIMIT 1";
+  if (version_ < 2) {
+    auto query = prepare("samples", (std::string("SELECT t FROM samples ORDER BY tick") + order).c_str());
+    if (sqlite3_step(query.get()) != SQLITE_ROW) return std::nullopt;
+    const int type = sqlite3_column_type(query.get(), 0);
+    if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) return std::nullopt;
+    return sqlite3_column_double(query.get(), 0);
+  }
+  auto query = prepare("sample_blocks",
+                       (std::string("SELECT count, data FROM sample_blocks ORDER BY first_tick") + order).c_str());
+  if (sqlite3_step(query.get()) != SQLITE_ROW || sqlite3_column_type(query.get(), 1) != SQLITE_BLOB) return std::nullopt;
+  std::vector<std::int64_t> ticks;
+  std::vector<engine::Sample> samples;
+  try {
+    detail::decode_block(sqlite3_column_blob(query.get(), 1), static_cast<std::size_t>(sqlite3_column_bytes(query.get(), 1)),
+                         sqlite3_column_int64(query.get(), 0), ticks, samples);
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
+  return last ? samples.back().t : samples.front().t;
+}
+
+std::optional<SampleTimes> Reader::sample_times() {
+  const auto first = peek_time(false);
+  const auto last = peek_time(true);
+  if (!first || !last) return std::nullopt;
+  return SampleTimes{*first, *last};
+}
+
+Session Reader::read_head(const std::filesystem::path& path, const ReadOptions& options) {
   if (bytes_ != nullptr) {
     check_bytes();
     open_in_memory();
@@ -601,13 +686,10 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
   read_events(session);
   refuse_empty_without_wal(session);
   if (options.samples) {
-    if (version_ >= 2) {
-      read_blocks(session, options.max_samples);
-    } else {
-      read_samples(session, options.max_samples);
-    }
-  }  // without the samples: their table's columns were checked with the schema
-  if (const int rc = detail::exec(db_, "COMMIT", error); rc != SQLITE_OK) fail_sqlite("file", rc);
+    start_samples(options.max_samples);
+  } else {
+    end_transaction();  // without the samples: their table's columns were checked with the schema
+  }
   return session;
 }
 
@@ -615,12 +697,49 @@ Session Reader::read(const std::filesystem::path& path, const ReadOptions& optio
 
 Session read_session(const std::filesystem::path& path, const ReadOptions& options) {
   Reader reader(path);
-  return reader.read(path, options);
+  Session session = reader.read_head(path, options);
+  session.samples.reserve(static_cast<std::size_t>(reader.reserve_hint()));
+  while (reader.read_more(session.samples)) {
+  }
+  return session;
 }
 
-Session read_session_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
-  Reader reader(name, bytes);
-  return reader.read(name, options);
+struct SampleStream::Impl {
+  explicit Impl(const std::filesystem::path& path) : reader(path) {}
+  Impl(const std::string& bytes, const std::string& name) : reader(name, bytes) {}
+  Reader reader;
+  Session head;
+  std::vector<engine::Sample> block;
+  std::uint64_t count = 0;
+};
+
+SampleStream::SampleStream(const std::filesystem::path& path, std::int64_t max_samples)
+    : impl_(std::make_unique<Impl>(path)) {
+  ReadOptions options;
+  options.max_samples = max_samples;
+  impl_->head = impl_->reader.read_head(path, options);
 }
+
+SampleStream::SampleStream(const std::string& bytes, const std::string& name, std::int64_t max_samples)
+    : impl_(std::make_unique<Impl>(bytes, name)) {
+  ReadOptions options;
+  options.max_samples = max_samples;
+  impl_->head = impl_->reader.read_head(name, options);
+}
+
+SampleStream::~SampleStream() = default;
+
+const Session& SampleStream::head() const { return impl_->head; }
+
+std::span<const engine::Sample> SampleStream::next() {
+  impl_->block.clear();  // capacity kept: one block's worth
+  impl_->reader.read_more(impl_->block);
+  impl_->count += impl_->block.size();
+  return impl_->block;
+}
+
+std::uint64_t SampleStream::count() const { return impl_->count; }
+
+std::optional<SampleTimes> SampleStream::sample_times() { return impl_->reader.sample_times(); }
 
 }  // namespace palpa::session

@@ -13,6 +13,7 @@
 
 #include "palpa/io/thresholds.hpp"
 #include "palpa/session/session.hpp"
+#include "palpa/session/session_reader.hpp"
 
 namespace palpa::score {
 
@@ -124,6 +125,13 @@ struct Score {
 Score score_session(const session::Session& session, const std::string& source);
 /// Same with explicit thresholds.
 Score score_session(const session::Session& session, const std::string& source, const Thresholds& thresholds);
+
+/// The same score from a stream, in one pass over its samples, none of them kept: memory is
+/// that of the case (grids, maps) and of the contact path (a point per 0.5 mm the contact
+/// moved), not of the session's length (docs/scoring.md, "Memory"). Throws what
+/// read_session and then score_session would, in the same order.
+Score score_stream(session::SampleStream& stream, const std::string& source);
+Score score_stream(session::SampleStream& stream, const std::string& source, const Thresholds& thresholds);
 
 /// The full result as JSON; has at least passed, sensitivity, false_positives,
 /// localization_error_mm, coverage, deep_coverage, duration_s, peak_force_n.
