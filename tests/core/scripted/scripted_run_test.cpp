@@ -8,6 +8,7 @@
 
 #include "scripted_test_support.hpp"
 #include "palpa/scripted/exercise.hpp"
+#include "palpa/session/session_id.hpp"
 #include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/author/presets.hpp"
 
@@ -295,7 +296,7 @@ TEST(Exercise, SessionInfoCarriesThePlacedCaseAndStyle) {
   EXPECT_EQ(info.device, "scripted trainee (light)");
   EXPECT_EQ(info.seed, std::optional<std::uint64_t>(5));
   EXPECT_EQ(info.extra["exercise_style"], "light");
-  EXPECT_EQ(info.id.size(), 16u);
+  EXPECT_TRUE(session::is_session_id(info.id) && info.id.size() == 32) << info.id;  // the one id format
   EXPECT_FALSE(info.software_version.empty());
   // The stored case is a valid case whose tumour is where it was placed.
   const auto back = io::parse_case(info.case_document.dump(), "stored");
