@@ -11,7 +11,9 @@ import argparse
 import hashlib
 import json
 import os
+import resource
 import shutil
+import signal
 import sqlite3
 import subprocess
 import sys
@@ -86,6 +88,25 @@ class Push(unittest.TestCase):
         self.assertEqual(self.pg.sql("SELECT count(*) FROM work_queue w JOIN sessions s ON s.id = w.session_id "
                                      "WHERE s.session_id = '%s' AND NOT w.done" % ("a0" * 16), "palpa"), "1")
         self.assertFalse(os.path.exists(self.outbox))
+
+    def test_a_full_disk_queues_nothing_and_leaves_no_partial_file(self):
+        # RLIMIT_FSIZE stands for a full disk: writes past 64 kB fail (EFBIG, SIGXFSZ ignored).
+        path = self.session_copy("full.palpa", "f5" * 16)
+        down = "host=127.0.0.1 port=%d dbname=palpa user=station_a connect_timeout=5" % pg_test_server.free_port()
+
+        def small_files():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (65536, 65536))
+
+        res = subprocess.run([CLI, "store", "push", path, "--store", down, "--station", "room-2", "--outbox", self.outbox],
+                             capture_output=True, text=True, env=self.pg.env(HOME=self.home), timeout=120,
+                             preexec_fn=small_files)
+        self.assertEqual(res.returncode, 1, res.stderr)
+        self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
+        self.assertIn(path + ": not pushed and not queued:", res.stderr)
+        self.assertNotIn("queued: ", res.stdout)
+        self.assertEqual(os.listdir(self.outbox), [])  # no copy, no record, no temporary file
+        self.assertEqual(os.path.getsize(path), os.path.getsize(os.path.join(REPO, "data", "sessions", "light.palpa")))
 
     def test_an_incomplete_session_is_refused(self):
         path = self.session_copy("cut.palpa", "b1" * 16)
