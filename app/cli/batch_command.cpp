@@ -26,6 +26,7 @@
 #include "palpa/options/number_checks.hpp"
 #include "palpa/report/cohort.hpp"
 #include "palpa/report/encoding.hpp"
+#include "palpa/report/force_trace.hpp"
 #include "palpa/report/images.hpp"
 #include "palpa/report/learning_curve.hpp"
 #include "palpa/report/proficiency.hpp"
@@ -183,8 +184,7 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     return outcome;
   }
   try {
-    // The samples as a stream (memory that of the case, however long the session), all of
-    // them only for the report's force plot.
+    // The samples as a stream: memory that of the case, however long the session.
     session::SampleStream stream(input.file);
     auto header = report::header_of(stream.head().info, input.file);
     if (const auto it = o.station_of.find(input.file); it != o.station_of.end()) header.station = it->second;
@@ -195,21 +195,14 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
       outcome.left_out = true;
       return outcome;
     }
-    score::Score score;
+    auto score = score::score_stream(stream, input.file);
     if (o.reports) {
-      session::Session session = stream.head();
-      for (auto block = stream.next(); !block.empty(); block = stream.next()) {
-        session.samples.insert(session.samples.end(), block.begin(), block.end());
-      }
-      score = score::score_session(session, input.file);
-      try {
-        report::write_session_report(sessions_dir, input.stem, header, session, score,
+      try {  // the force plot's trace from a second pass: no sample is kept
+        report::write_session_report(sessions_dir, input.stem, header, *report::read_force_trace(input.file), score,
                                      {true, true, true, false});
       } catch (const std::exception& e) {
         output_error = e.what();
       }
-    } else {
-      score = score::score_stream(stream, input.file);
     }
     score.maps.clear();  // the batch keeps only what its tables need
     score.maps.shrink_to_fit();

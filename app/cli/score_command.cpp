@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "output_guard.hpp"
 #include "xapi_send.hpp"
+#include "palpa/report/force_trace.hpp"
 #include "palpa/report/report_json.hpp"
 #include "palpa/report/session_report.hpp"
 #include "palpa/score/score.hpp"
@@ -26,19 +27,12 @@ struct ScoreOptions {
 
 int run_score(const ScoreOptions& o) { return score_and_report(o.session, o.json, o.report); }
 
-// Reads and scores a session. Without report files the samples are read as a stream and
-// `session` gets no samples: memory stays that of the case however long the session is.
-// The report's force plot draws every sample, so with report files they are all read.
-void read_and_score(const std::filesystem::path& path, bool with_samples, session::Session& session,
-                    score::Score& score) {
-  if (with_samples) {
-    session = session::read_session(path);
-    score = score::score_session(session, path.string());
-    return;
-  }
+// Reads and scores a session as a stream: `head` gets no samples, and memory stays that of
+// the case however long the session is.
+void read_and_score(const std::filesystem::path& path, session::Session& head, score::Score& score) {
   session::SampleStream stream(path);
   score = score::score_stream(stream, path.string());
-  session = stream.head();
+  head = stream.head();
 }
 
 }  // namespace
@@ -60,7 +54,7 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
   session::Session session;
   score::Score score;
   try {
-    read_and_score(path, !report_dir.empty(), session, score);
+    read_and_score(path, session, score);
   } catch (const session::SessionError& e) {
     print_error(e.what());
     return kBadInput;
@@ -78,7 +72,7 @@ int score_and_report(const std::filesystem::path& path, bool json, const ReportR
     try {
       report::ReportFiles files;
       files.xapi_home_page = xapi->home_page;
-      report::write_session_report(report_dir, path.stem().string(), header, session, score, files);
+      report::write_session_report(report_dir, path.stem().string(), header, *report::read_force_trace(path), score, files);
     } catch (const std::exception& e) {
       print_error(e.what());
       return kFailure;

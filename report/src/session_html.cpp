@@ -63,6 +63,10 @@ SessionImages render_images(const session::Session& session, const score::Score&
   return {png_bytes(coverage_heatmap(score)), png_bytes(pressure_map(score)), png_bytes(force_plot(session, score))};
 }
 
+SessionImages render_images(const ForceTrace& trace, const score::Score& score) {
+  return {png_bytes(coverage_heatmap(score)), png_bytes(pressure_map(score)), png_bytes(force_plot(trace, score))};
+}
+
 namespace {
 
 // The page head, what was palpated, and the verdict with its gates.

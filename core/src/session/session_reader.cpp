@@ -48,6 +48,8 @@ class Reader {
   bool read_more(std::vector<engine::Sample>& out);
   /// The file's sample count, capped for a reservation (count_samples).
   std::int64_t reserve_hint() const { return reserve_hint_; }
+  /// The file's sample count as its tables declare it (checked against the limit).
+  std::int64_t declared_count() const { return declared_; }
   std::optional<SampleTimes> sample_times();
 
  private:
@@ -108,7 +110,7 @@ class Reader {
   // Where read_more() has got to: the samples' query (reset at the end), the last tick and
   // time read (the next must follow them), how many were read.
   std::optional<detail::Statement> samples_query_;
-  std::int64_t max_samples_ = 0, reserve_hint_ = 0, read_ = 0, previous_tick_ = -1;
+  std::int64_t max_samples_ = 0, reserve_hint_ = 0, declared_ = 0, read_ = 0, previous_tick_ = -1;
   double previous_t_ = -std::numeric_limits<double>::infinity();
   std::vector<std::int64_t> ticks_;  // the ticks of the block being read
 };
@@ -482,6 +484,7 @@ std::int64_t Reader::count_samples(const char* sql, std::int64_t max_samples) {
     fail("samples", fmt::format("{} rows: more than a session may hold ({}; 72000000 is 20 hours at 1 kHz)", rows,
                                 max_samples));
   }
+  declared_ = rows;
   return std::min<sqlite3_int64>(rows, sqlite3_int64{1} << 22);
 }
 
@@ -739,6 +742,10 @@ std::span<const engine::Sample> SampleStream::next() {
 }
 
 std::uint64_t SampleStream::count() const { return impl_->count; }
+
+std::uint64_t SampleStream::declared_count() const {
+  return static_cast<std::uint64_t>(impl_->reader.declared_count());
+}
 
 std::optional<SampleTimes> SampleStream::sample_times() { return impl_->reader.sample_times(); }
 

@@ -57,6 +57,9 @@ class SampleStream {
   std::span<const engine::Sample> next();
   /// How many samples next() has returned.
   std::uint64_t count() const;
+  /// How many samples the file says it holds (rows, or the blocks' counts), known before the
+  /// first next(): what next() returns in all for a file it reads to the end without error.
+  std::uint64_t declared_count() const;
   /// The first and last sample's time, looked up before reading them in order (a timeline
   /// needs the end before the first sample). Unchecked: nothing when there are no samples
   /// or the first or last cannot be read (next() then throws before the end), and a file

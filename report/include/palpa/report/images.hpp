@@ -17,6 +17,8 @@
 
 namespace palpa::report {
 
+class ForceTrace;
+
 /// Where scene (x, y) lands in a map image: x to the right, y up, one scale for both.
 struct TopView {
   cv::Rect area;       ///< the drawing area in the image
@@ -47,6 +49,8 @@ cv::Mat pressure_map(const score::Score& score);
 /// The level is depth / (2 R) at the contact, R from the session's case; when that case
 /// cannot be built the lower panel shows the depth in mm instead.
 cv::Mat force_plot(const session::Session& session, const score::Score& score);
+/// The same from a trace gathered while the samples streamed by (force_trace.hpp).
+cv::Mat force_plot(const ForceTrace& trace, const score::Score& score);
 
 /// PNG bytes of an image; throws std::runtime_error if OpenCV cannot encode it.
 std::vector<std::uint8_t> png_bytes(const cv::Mat& image);

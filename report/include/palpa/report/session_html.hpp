@@ -11,6 +11,8 @@
 
 namespace palpa::report {
 
+class ForceTrace;
+
 /// The three figures as PNG bytes.
 struct SessionImages {
   std::vector<std::uint8_t> coverage, pressure, force;
@@ -18,6 +20,8 @@ struct SessionImages {
 
 /// Renders coverage_heatmap, pressure_map and force_plot as PNGs.
 SessionImages render_images(const session::Session& session, const score::Score& score);
+/// The same with the force plot from a trace gathered while the samples streamed by.
+SessionImages render_images(const ForceTrace& trace, const score::Score& score);
 
 /// The page: pass/fail banner with the gate messages, metrics table, the three figures,
 /// tumours, marks, notes and the thresholds used.

@@ -12,6 +12,8 @@
 
 namespace palpa::report {
 
+class ForceTrace;
+
 struct ReportFiles {
   bool html = true, json = true, xapi = true, csv = true;
   std::string xapi_home_page = "urn:palpa";  ///< the actor account's homePage in STEM.xapi.json
@@ -25,6 +27,10 @@ std::vector<std::filesystem::path> session_report_paths(const std::filesystem::p
 /// Creates `dir` if needed. Throws std::runtime_error "PATH: cannot write" on failure.
 void write_session_report(const std::filesystem::path& dir, const std::string& stem, const SessionHeader& header,
                           const session::Session& session, const score::Score& score, const ReportFiles& files = {});
+/// The same with the force plot from a trace gathered while the samples streamed by
+/// (force_trace.hpp): the report of a session of any length in the memory of its plots.
+void write_session_report(const std::filesystem::path& dir, const std::string& stem, const SessionHeader& header,
+                          const ForceTrace& trace, const score::Score& score, const ReportFiles& files = {});
 
 /// Writes `text` to `path` (replacing it); throws std::runtime_error "PATH: cannot write".
 void write_text(const std::filesystem::path& path, std::string_view text);
