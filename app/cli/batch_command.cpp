@@ -260,7 +260,7 @@ void write_summary(const fs::path& out, const std::vector<Scored>& scored,
   for (const auto& s : scored) summary += report::csv_row(s.header, s.score) + "\n";
   report::write_text(out / "summary.csv", summary);
   std::string errors = "file,error\n";
-  for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
+  for (const auto& s : skipped) errors += report::csv_text(s.file) + "," + report::csv_text(s.error) + "\n";
   report::write_text(out / "errors.csv", errors);
 }
 

@@ -8,6 +8,7 @@
 #include "palpa/plot/line_plot.hpp"
 #include "palpa/report/csv_number.hpp"
 #include "palpa/report/encoding.hpp"
+#include "palpa/report/summary_csv.hpp"
 
 namespace palpa::report {
 
@@ -85,14 +86,14 @@ std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum
   auto share = [](double v) { return csv_number(v, CsvUnit::Fraction); };
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},", i + 1, csv_field(a.header.started_at), csv_field(a.header.file),
-                       csv_field(a.header.id), share(a.score), a.passed ? "1" : "0", share(a.sensitivity),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},", i + 1, csv_text(a.header.started_at), csv_text(a.header.file),
+                       csv_text(a.header.id), share(a.score), a.passed ? "1" : "0", share(a.sensitivity),
                        share(a.coverage), share(a.deep_coverage));
     csv += fmt::format("{},{},{},{},{}\n", i < cusum.value.size() ? csv_number(cusum.value[i], CsvUnit::Cusum) : "",
                        i < cusum.signal.size() ? to_string(cusum.signal[i]) : std::string_view(),
                        csv_number(100.0 * a.score, CsvUnit::Score100),
                        i < proficiency.proficient.size() ? (proficiency.proficient[i] ? "1" : "0") : "",
-                       i < proficiency.verdict.size() ? csv_field(proficiency.verdict[i]) : std::string());
+                       i < proficiency.verdict.size() ? csv_text(proficiency.verdict[i]) : std::string());
   }
   return csv;
 }
