@@ -315,7 +315,8 @@ std::vector<const Scored*> curve_attempts(const std::vector<Scored>& scored, con
 }
 
 // One curve per trainee over every case: trainees/STEM.csv and .png, as tools expect them.
-std::vector<report::TraineeCurve> write_trainee_curves(const fs::path& out, const std::vector<const Scored*>& attempts) {
+std::vector<report::TraineeCurve> write_trainee_curves(const fs::path& out,
+                                                       const std::vector<const Scored*>& attempts) {
   std::vector<report::TraineeCurve> curves;
   for (std::size_t begin = 0; begin < attempts.size();) {
     std::size_t end = begin;
@@ -383,8 +384,8 @@ std::vector<report::SessionLink> session_links(const std::vector<Scored>& scored
 
 // The learning curves, the summaries and the cohort page; the page's notes (what the
 // curves leave out, and the option that includes it) also go to stderr.
-void write_cohort(const fs::path& out, const std::vector<Scored>& scored, const std::vector<report::SkippedFile>& skipped,
-                  const BatchOptions& o, std::size_t filtered) {
+void write_cohort(const fs::path& out, const std::vector<Scored>& scored,
+                  const std::vector<report::SkippedFile>& skipped, const BatchOptions& o, std::size_t filtered) {
   report::LeftOut left_out;
   left_out.filtered = filtered;
   left_out.filter = o.filter.describe();

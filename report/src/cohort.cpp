@@ -17,12 +17,14 @@ constexpr const char* kCohortCss =
     "td,th{overflow-wrap:anywhere;max-width:22em}h2,p{overflow-wrap:anywhere}td.links a{margin-right:.6em}\n";
 
 constexpr std::size_t kShownChars = 60;
+// Errors are ours around a file name: shortened only when absurdly long, so they stay readable.
+constexpr std::size_t kShownErrorChars = 400;
 
 // Untrusted text for the page: controls and bidi overrides escaped, at most 60 characters
 // shown with "…"; the whole (escaped) value in a title when anything was changed. Plain
 // short text is written as html_escape alone, as before.
-std::string shown(std::string_view text) {
-  const std::string brief = printable(text, kShownChars);
+std::string shown(std::string_view text, std::size_t max_chars = kShownChars) {
+  const std::string brief = printable(text, max_chars);
   if (brief == text) return html_escape(text);
   return "<span title=\"" + html_escape(printable(text, std::numeric_limits<std::size_t>::max())) + "\">" +
          html_escape(brief) + "</span>";
@@ -131,7 +133,10 @@ std::string skipped_section(const std::vector<SkippedFile>& skipped) {
   std::string html = "<h2>Skipped files</h2>\n";
   if (skipped.empty()) return html + "<p>None.</p>\n";
   html += "<table>\n<tr><th>file</th><th>error</th></tr>\n";
-  for (const auto& s : skipped) html += "<tr><td>" + shown(s.file) + "</td><td>" + shown(s.error) + "</td></tr>\n";
+  for (const auto& s : skipped) {
+    html += "<tr><td>" + shown(s.file, 2 * kShownChars) + "</td><td>" + shown(s.error, kShownErrorChars) +
+            "</td></tr>\n";
+  }
   return html + "</table>\n";
 }
 
