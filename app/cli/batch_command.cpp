@@ -475,8 +475,9 @@ Command add_batch_command(CLI::App& parent) {
   auto* app = parent.add_subcommand(
       "batch", "Score many sessions: PATHs are session files (any extension) or folders searched recursively for "
                "*.palpa. Writes DIR/summary.csv (one row per session, by trainee then start time), DIR/errors.csv "
-               "(skipped files), DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures) and "
-               "DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
+               "(skipped files), DIR/cases.csv and DIR/stations.csv (per case and per station), "
+               "DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures), the same per case "
+               "under DIR/curves/TRAINEE/CASE.csv and .png, and DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
                "still written), 1 when an output could not be written.");
   app->add_option("PATH", o->paths, "session files or folders (required unless --store)");
   app->add_option("--out", o->out,
