@@ -25,6 +25,7 @@
 #include "output_guard.hpp"
 #include "palpa/options/number_checks.hpp"
 #include "palpa/report/cohort.hpp"
+#include "palpa/report/cohort_tables.hpp"
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/force_trace.hpp"
 #include "palpa/report/images.hpp"
@@ -69,13 +70,19 @@ struct Input {
 std::string out_refusal(const fs::path& out, bool force, const std::vector<Input>& inputs) {
   std::vector<fs::path> files;
   for (const auto& input : inputs) files.emplace_back(input.file);
-  std::vector<fs::path> outputs{out / "summary.csv", out / "errors.csv", out / "cohort.html"};
+  std::vector<fs::path> outputs{out / "summary.csv", out / "errors.csv", out / "cohort.html", out / "cases.csv",
+                                 out / "stations.csv"};
   std::error_code ec;
   for (const char* folder : {"trainees", "sessions"}) {
     for (fs::directory_iterator it(out / folder, ec), end; !ec && it != end; it.increment(ec)) {
       outputs.push_back(it->path());
     }
     ec.clear();
+  }
+  // curves/TRAINEE/CASE.csv and .png: the files, not their folders
+  for (fs::recursive_directory_iterator it(out / "curves", ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code type_ec;
+    if (!it->is_directory(type_ec)) outputs.push_back(it->path());
   }
   return refusal_to_write(outputs, force, files);
 }
@@ -84,6 +91,7 @@ std::string out_refusal(const fs::path& out, bool force, const std::vector<Input
 struct Scored {
   report::SessionHeader header;
   score::Score score;
+  std::string stem;  ///< Input::stem: names its report files under sessions/
 };
 
 struct Outcome {
@@ -206,7 +214,7 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     }
     score.maps.clear();  // the batch keeps only what its tables need
     score.maps.shrink_to_fit();
-    outcome.scored = Scored{std::move(header), std::move(score)};
+    outcome.scored = Scored{std::move(header), std::move(score), input.stem};
   } catch (const session::SessionError& e) {
     outcome.error = one_line(e.what());
   } catch (const std::exception& e) {
@@ -253,15 +261,18 @@ void write_summary(const fs::path& out, const std::vector<Scored>& scored,
   for (const auto& s : scored) summary += report::csv_row(s.header, s.score) + "\n";
   report::write_text(out / "summary.csv", summary);
   std::string errors = "file,error\n";
-  for (const auto& s : skipped) errors += report::csv_field(s.file) + "," + report::csv_field(s.error) + "\n";
+  for (const auto& s : skipped) errors += report::csv_text(s.file) + "," + report::csv_text(s.error) + "\n";
   report::write_text(out / "errors.csv", errors);
 }
 
-// One trainee's learning curve from her attempts (in order): CSV and PNG under trainees/.
-report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Scored*>& attempts) {
+// A learning curve from attempts in order: CSV and PNG at `files` (relative to out, no
+// extension). Per-case curves keep no PNG in memory: the page links to their files.
+report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Scored*>& attempts,
+                                 const std::string& files, bool keep_png) {
   report::TraineeCurve curve;
   curve.trainee = attempts.front()->header.trainee;
   curve.file_stem = report::trainee_file_stem(curve.trainee);
+  curve.files = files;
   std::vector<bool> passed;
   for (const Scored* a : attempts) {
     curve.attempts.push_back(report::attempt_of(a->header, a->score));
@@ -269,35 +280,120 @@ report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Sc
   }
   curve.cusum = report::failure_cusum(passed);
   curve.proficiency = report::proficiency(passed);
-  report::write_text(out / "trainees" / (curve.file_stem + ".csv"),
-                     report::trainee_csv(curve.attempts, curve.cusum, curve.proficiency));
+  report::write_text(out / (files + ".csv"), report::trainee_csv(curve.attempts, curve.cusum, curve.proficiency));
   curve.png =
       report::png_bytes(report::learning_curve_plot(curve.trainee, curve.attempts, curve.cusum, curve.proficiency));
-  report::write_text(out / "trainees" / (curve.file_stem + ".png"),
+  report::write_text(out / (files + ".png"),
                      std::string_view(reinterpret_cast<const char*>(curve.png.data()), curve.png.size()));
+  if (!keep_png) curve.png = {};
   return curve;
 }
 
 // Learning curves follow a trainee's exams: by default trainee exercises only, and no
-// attempt the trainee abandoned (summary.csv still lists every session). `scored` is
-// sorted by trainee.
-std::vector<report::TraineeCurve> write_curves(const fs::path& out, const std::vector<Scored>& scored,
-                                               const BatchOptions& o) {
+// attempt the trainee abandoned (summary.csv still lists every session); the others are
+// tallied in `left_out` for the page's notes. `scored` is sorted by trainee then start.
+std::vector<const Scored*> curve_attempts(const std::vector<Scored>& scored, const BatchOptions& o,
+                                          report::LeftOut& left_out) {
   std::vector<const Scored*> attempts;
   for (const auto& s : scored) {
-    if (s.score.abandoned && !o.include_abandoned) continue;
-    if (s.header.mode != "trainee" && !o.all_modes) continue;
-    attempts.push_back(&s);
+    if (s.header.mode != "trainee" && !o.all_modes) {
+      ++left_out.by_mode[s.header.mode];
+    } else if (s.score.abandoned && !o.include_abandoned) {
+      ++left_out.abandoned;
+    } else {
+      attempts.push_back(&s);
+    }
   }
+  return attempts;
+}
+
+// One curve per trainee over every case: trainees/STEM.csv and .png, as tools expect them.
+std::vector<report::TraineeCurve> write_trainee_curves(const fs::path& out,
+                                                       const std::vector<const Scored*>& attempts) {
   std::vector<report::TraineeCurve> curves;
   for (std::size_t begin = 0; begin < attempts.size();) {
     std::size_t end = begin;
     while (end < attempts.size() && attempts[end]->header.trainee == attempts[begin]->header.trainee) ++end;
+    const auto stem = report::trainee_file_stem(attempts[begin]->header.trainee);
     curves.push_back(write_curve(out, {attempts.begin() + static_cast<std::ptrdiff_t>(begin),
-                                       attempts.begin() + static_cast<std::ptrdiff_t>(end)}));
+                                       attempts.begin() + static_cast<std::ptrdiff_t>(end)},
+                                 "trainees/" + stem, true));
     begin = end;
   }
   return curves;
+}
+
+// One curve per trainee and case, so that cases of different difficulty are not mixed:
+// curves/TRAINEE_STEM/CASE_STEM.csv and .png (a folder per trainee: no stem can be split
+// two ways).
+std::vector<report::TraineeCurve> write_case_curves(const fs::path& out, const std::vector<const Scored*>& attempts) {
+  std::map<std::pair<std::string, std::string>, std::vector<const Scored*>> by_pair;  // keeps start order
+  for (const Scored* a : attempts) by_pair[{a->header.trainee, a->header.case_id}].push_back(a);
+  std::vector<report::TraineeCurve> curves;
+  for (const auto& [key, pair_attempts] : by_pair) {
+    const auto folder = "curves/" + report::trainee_file_stem(key.first);
+    fs::create_directories(out / folder);
+    auto curve = write_curve(out, pair_attempts, folder + "/" + report::case_file_stem(key.second), false);
+    curve.case_id = key.second;
+    curve.case_name = report::case_name(pair_attempts.front()->header);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+// The options that made the filter, for the note on what it left out: "--since, --case".
+std::string filter_options(const report::SessionFilter& f) {
+  std::string names;
+  for (const auto& [value, name] : {std::pair{&f.since, "--since"}, std::pair{&f.until, "--until"},
+                                    std::pair{&f.case_key, "--case"}, std::pair{&f.trainee, "--trainee"}}) {
+    if (!value->empty()) names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  return names;
+}
+
+// cases.csv and stations.csv: every scored session, whatever its mode, as summary.csv.
+void write_group_summaries(const fs::path& out, const std::vector<Scored>& scored, report::CohortPage& page) {
+  std::vector<report::SessionFacts> facts;
+  for (const auto& s : scored) facts.push_back({&s.header, s.score.score, s.score.passed, s.score.abandoned});
+  report::ProficientPairs proficient;
+  for (const auto& c : page.case_curves) {
+    if (c.proficiency.now()) proficient.insert({c.trainee, c.case_id});
+  }
+  page.cases = report::case_summaries(facts, proficient);
+  page.stations = report::station_summaries(facts, proficient);
+  report::write_text(out / "cases.csv", report::cases_csv(page.cases));
+  report::write_text(out / "stations.csv", report::stations_csv(page.stations));
+}
+
+// With --reports: each session's page, linked from the cohort page by its (file-name) stem.
+std::vector<report::SessionLink> session_links(const std::vector<Scored>& scored) {
+  std::vector<report::SessionLink> links;
+  for (const auto& s : scored) {
+    links.push_back({s.header.trainee, s.header.started_at, report::outcome_of(s.score),
+                     report::relative_href("sessions", s.stem, ".html")});
+  }
+  return links;
+}
+
+// The learning curves, the summaries and the cohort page; the page's notes (what the
+// curves leave out, and the option that includes it) also go to stderr.
+void write_cohort(const fs::path& out, const std::vector<Scored>& scored,
+                  const std::vector<report::SkippedFile>& skipped, const BatchOptions& o, std::size_t filtered) {
+  report::LeftOut left_out;
+  left_out.filtered = filtered;
+  left_out.filter = o.filter.describe();
+  left_out.filter_options = filter_options(o.filter);
+  const auto attempts = curve_attempts(scored, o, left_out);
+  report::CohortPage page;
+  page.trainees = write_trainee_curves(out, attempts);
+  page.case_curves = write_case_curves(out, attempts);
+  write_group_summaries(out, scored, page);
+  if (o.reports) page.sessions = session_links(scored);
+  page.skipped = skipped;
+  page.selection = o.filter.describe();
+  page.notes = report::left_out_notes(left_out);
+  report::write_text(out / "cohort.html", report::cohort_html(page));
+  for (const auto& note : page.notes) std::fprintf(stderr, "batch: %s\n", note.c_str());
 }
 
 int run_batch(const BatchOptions& o) {
@@ -341,8 +437,7 @@ int run_batch(const BatchOptions& o) {
   });
   try {
     write_summary(out, scored, skipped);
-    report::write_text(out / "cohort.html",
-                       report::cohort_html(write_curves(out, scored, o), skipped, o.filter.describe()));
+    write_cohort(out, scored, skipped, o, left_out);
   } catch (const std::exception& e) {
     print_error(e.what());
     return kFailure;
@@ -373,8 +468,9 @@ Command add_batch_command(CLI::App& parent) {
   auto* app = parent.add_subcommand(
       "batch", "Score many sessions: PATHs are session files (any extension) or folders searched recursively for "
                "*.palpa. Writes DIR/summary.csv (one row per session, by trainee then start time), DIR/errors.csv "
-               "(skipped files), DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures) and "
-               "DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
+               "(skipped files), DIR/cases.csv and DIR/stations.csv (per case and per station), "
+               "DIR/trainees/TRAINEE.csv and .png (learning curve with a CUSUM of failures), the same per case "
+               "under DIR/curves/TRAINEE/CASE.csv and .png, and DIR/cohort.html. Exit 0 when every session was scored, 2 when any was skipped (the outputs are "
                "still written), 1 when an output could not be written.");
   app->add_option("PATH", o->paths, "session files or folders (required unless --store)");
   app->add_option("--out", o->out,

@@ -8,6 +8,7 @@
 #include "palpa/plot/line_plot.hpp"
 #include "palpa/report/csv_number.hpp"
 #include "palpa/report/encoding.hpp"
+#include "palpa/report/summary_csv.hpp"
 
 namespace palpa::report {
 
@@ -85,14 +86,14 @@ std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum
   auto share = [](double v) { return csv_number(v, CsvUnit::Fraction); };
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},", i + 1, csv_field(a.header.started_at), csv_field(a.header.file),
-                       csv_field(a.header.id), share(a.score), a.passed ? "1" : "0", share(a.sensitivity),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},", i + 1, csv_text(a.header.started_at), csv_text(a.header.file),
+                       csv_text(a.header.id), share(a.score), a.passed ? "1" : "0", share(a.sensitivity),
                        share(a.coverage), share(a.deep_coverage));
     csv += fmt::format("{},{},{},{},{}\n", i < cusum.value.size() ? csv_number(cusum.value[i], CsvUnit::Cusum) : "",
                        i < cusum.signal.size() ? to_string(cusum.signal[i]) : std::string_view(),
                        csv_number(100.0 * a.score, CsvUnit::Score100),
                        i < proficiency.proficient.size() ? (proficiency.proficient[i] ? "1" : "0") : "",
-                       i < proficiency.verdict.size() ? csv_field(proficiency.verdict[i]) : std::string());
+                       i < proficiency.verdict.size() ? csv_text(proficiency.verdict[i]) : std::string());
   }
   return csv;
 }
@@ -173,6 +174,21 @@ cv::Mat learning_curve_plot(const std::string& trainee, const std::vector<Attemp
   return image;
 }
 
+namespace {
+
+std::string hash8(std::string_view text) {  // 8 hex digits of the text's SHA-1
+  static constexpr char kHex[] = "0123456789abcdef";
+  const auto digest = sha1(text);
+  std::string hex;
+  for (std::size_t i = 0; i < 4; ++i) {
+    hex += kHex[digest[i] >> 4];
+    hex += kHex[digest[i] & 15];
+  }
+  return hex;
+}
+
+}  // namespace
+
 std::string trainee_file_stem(std::string_view trainee) {
   std::string stem;
   for (const char c : trainee) {
@@ -183,13 +199,23 @@ std::string trainee_file_stem(std::string_view trainee) {
   while (!stem.empty() && stem.front() == '.') stem.front() = '_';
   if (stem.size() > 64) stem.resize(64);
   if (stem != trainee || stem.empty()) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    const auto digest = sha1(trainee);
     stem += stem.empty() ? "trainee-" : "-";
-    for (std::size_t i = 0; i < 4; ++i) {
-      stem += kHex[digest[i] >> 4];
-      stem += kHex[digest[i] & 15];
-    }
+    stem += hash8(trainee);
+  }
+  return stem;
+}
+
+std::string case_file_stem(std::string_view case_id) {
+  constexpr std::string_view kPrefix = "urn:palpa:case:";
+  if (case_id.substr(0, kPrefix.size()) == kPrefix) {
+    const auto rest = case_id.substr(kPrefix.size());
+    if (!rest.empty() && trainee_file_stem(rest) == rest) return std::string(rest);
+  }
+  // Any other id always carries its hash, so that "default" never meets urn:palpa:case:default.
+  std::string stem = trainee_file_stem(case_id);
+  if (stem == case_id) {
+    stem += '-';
+    stem += hash8(case_id);
   }
   return stem;
 }

@@ -6,6 +6,7 @@
 
 #include "palpa/report/csv_number.hpp"
 #include "palpa/report/encoding.hpp"
+#include "palpa/report/printable.hpp"
 
 namespace palpa::report {
 
@@ -16,6 +17,11 @@ const std::string& csv_header() {
       "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,"
       "outcome,mode,case_file,case_id,score_100,station";
   return kHeader;
+}
+
+std::string csv_text(std::string_view text) {
+  if (is_printable(text)) return csv_field(text);
+  return csv_field(printable(text, std::numeric_limits<std::size_t>::max()));
 }
 
 double mean_localization_error_mm(const score::Score& score) {
@@ -37,7 +43,7 @@ std::string csv_row(const SessionHeader& h, const score::Score& s) {
   auto text = [&row, &first](std::string_view v) {
     if (!first) row += ',';
     first = false;
-    row += csv_field(v);
+    row += csv_text(v);
   };
   auto number = [&row](double v, CsvUnit unit) {
     row += ',';

@@ -13,6 +13,7 @@ import csv
 import json
 import math
 import os
+import re
 import shutil
 import sqlite3
 import subprocess
@@ -377,6 +378,185 @@ class Cohort(unittest.TestCase):
         res, _ = self.batch("--since", "2026-12-01", "--until", "2026-11-30")
         self.assertEqual(res.returncode, 2, res.stderr)
         self.assertIn("--since: 2026-12-01 is after --until 2026-11-30", res.stderr)
+
+
+def median(values):
+    values = sorted(values)
+    mid = len(values) // 2
+    return values[mid] if len(values) % 2 else (values[mid - 1] + values[mid]) / 2
+
+
+def proficient_now(passed):
+    """Three passes in a row at the end (docs: report/README.md, the verdict)."""
+    return len(passed) >= 3 and all(passed[-3:])
+
+
+class Coordinator(unittest.TestCase):
+    """The coordinator's view: per-case and per-station summaries, one learning curve per
+    trainee and case, links to the session reports, notes on what the curves leave out, and
+    names from session files that are escaped and shortened. Sessions are copies of alice-1
+    (a pass) and alice-0 (a failure) with their meta rewritten."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="palpa_coordinator_")
+        self.inputs = os.path.join(self.tmp.name, "in")
+        os.makedirs(self.inputs)
+        self.count = 0
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def session(self, trainee, outcome, day, case=None, station=None, mode="trainee"):
+        """One session (P pass, F fail) on the given day of November 2026; `case` renames the
+        case's title (so its case_id), `station` goes to extra.station."""
+        self.count += 1
+        path = os.path.join(self.inputs, "s%03d.palpa" % self.count)
+        shutil.copy(os.path.join(SESSIONS, "alice-1.palpa" if outcome == "P" else "alice-0.palpa"), path)
+        db = sqlite3.connect(path)
+        extra = {"mode": mode}
+        if station is not None:
+            extra["station"] = station
+        values = [("id", "%016d" % self.count), ("trainee", trainee),
+                  ("started_at", "2026-11-%02dT09:00:00Z" % day), ("extra", json.dumps(extra))]
+        if case is not None:
+            document = json.loads(db.execute("select value from meta where key = 'case'").fetchone()[0])
+            document["title"] = case
+            values.append(("case", json.dumps(document)))
+        for key, value in values:
+            db.execute("update meta set value = ? where key = ?", (value, key))
+        db.commit()
+        db.close()
+
+    def batch(self, *args):
+        out = os.path.join(self.tmp.name, "out%d" % len(os.listdir(self.tmp.name)))
+        return run(["batch", self.inputs, "--out", out] + list(args)), out
+
+    def two_cases_two_stations(self):
+        for day, outcome in enumerate("PPP", 1):
+            self.session("ann", outcome, day, "Case A", "north")
+        for day, outcome in enumerate("FP", 10):
+            self.session("ann", outcome, day, "Case B", "south")
+        for day, outcome in enumerate("FFP", 1):
+            self.session("ben", outcome, day, "Case A", "south")
+        self.session("ben", "P", 20, "Case B", "north")
+        self.session("cal", "P", 21, "Case A", "north", mode="scripted")   # in the summaries, not in the curves
+
+    def expected_groups(self, rows, column):
+        """cases.csv / stations.csv worked out from summary.csv alone."""
+        curves = {}
+        for r in sorted(rows, key=lambda r: r["started_at"]):
+            if r["mode"] == "trainee" and r["outcome"] != "abandoned":
+                curves.setdefault((r["trainee"], r["case_id"]), []).append(r["passed"] == "1")
+        groups = {}
+        for r in rows:
+            groups.setdefault(r[column], []).append(r)
+        expected = {}
+        for key, group in groups.items():
+            scored = [r for r in group if r["outcome"] != "abandoned"]
+            passed = sum(r["passed"] == "1" for r in group)
+            proficient = {r["trainee"] for r in group if proficient_now(curves.get((r["trainee"], r["case_id"]), []))}
+            expected[key] = {"sessions": len(group), "scored": len(scored), "passed": passed,
+                             "pass_rate": "%.3f" % (passed / len(scored)),
+                             "median": median([float(r["score_100"]) for r in scored]),
+                             "trainees": len({r["trainee"] for r in group}), "proficient_trainees": len(proficient)}
+        return expected
+
+    def assert_groups(self, path, column, rows):
+        expected = self.expected_groups(rows, column)
+        got = {r[column]: r for r in read_csv(path)}
+        self.assertEqual(set(got), set(expected))
+        for key, e in expected.items():
+            g = got[key]
+            for field in ("sessions", "scored", "passed", "trainees", "proficient_trainees"):
+                self.assertEqual(int(g[field]), e[field], (key, field))
+            self.assertEqual(g["pass_rate"], e["pass_rate"], key)
+            # The median of the exact scores, to 0.1; summary.csv's are already rounded to 0.1.
+            self.assertAlmostEqual(float(g["median_score_100"]), e["median"], delta=0.1 + 1e-9, msg=key)
+        return got
+
+    def test_per_case_and_per_station_summaries_match_summary_csv(self):
+        self.two_cases_two_stations()
+        res, out = self.batch("--reports")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = read_csv(os.path.join(out, "summary.csv"))
+        self.assertEqual(len(rows), 10)
+        self.assertEqual({r["station"] for r in rows}, {"north", "south"})
+        cases = self.assert_groups(os.path.join(out, "cases.csv"), "case_id", rows)
+        stations = self.assert_groups(os.path.join(out, "stations.csv"), "station", rows)
+        self.assertEqual(len(cases), 2)
+        # By hand: ann passed case A three times in a row (north); nobody else is proficient.
+        a = [k for k in cases if k.endswith("case-a")][0]
+        self.assertEqual((cases[a]["sessions"], cases[a]["passed"], cases[a]["proficient_trainees"]), ("7", "5", "1"))
+        self.assertEqual(cases[a]["case"], "Case A")
+        self.assertEqual((stations["north"]["sessions"], stations["north"]["proficient_trainees"]), ("5", "1"))
+        self.assertEqual(stations["south"]["proficient_trainees"], "0")
+        with open(os.path.join(out, "cohort.html")) as fh:
+            html = fh.read()
+        self.assertIn("<h2>Cases</h2>", html)
+        self.assertIn("<h2>Stations</h2>", html)
+        self.assertIn('<tr><td>north</td><td class="num">5</td>', html)
+        # One curve per trainee and case, none mixing cases; the per-trainee files as before.
+        self.assertEqual(len(read_csv(os.path.join(out, "trainees", "ann.csv"))), 5)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "curves"))), ["ann", "ben"])
+        ann = {n: read_csv(os.path.join(out, "curves", "ann", n)) for n in os.listdir(os.path.join(out, "curves", "ann"))
+               if n.endswith(".csv")}
+        self.assertEqual(sorted(len(v) for v in ann.values()), [2, 3])
+        by_id = {r["session_id"]: r["case_id"] for r in rows}
+        for attempts in ann.values():
+            self.assertEqual(len({by_id[a["session_id"]] for a in attempts}), 1)
+        self.assertEqual(ann["case-a.csv"][-1]["verdict"], "proficient since attempt 3")
+        self.assertIn('href="curves/ann/case-a.png"', html)
+        # --reports: every session's page linked, relative, and there.
+        links = [h for h in re.findall(r'href="([^"]+)"', html) if h.startswith("sessions/")]
+        self.assertEqual(len(links), 10)
+        for href in links:
+            self.assertTrue(os.path.isfile(os.path.join(out, href)), href)
+
+    def test_a_scripted_cohort_says_which_option_counts_it(self):
+        for day in range(1, 4):
+            self.session("sam", "P", day, mode="scripted")
+        res, out = self.batch()
+        self.assertEqual(res.returncode, 0, res.stderr)
+        note = ("3 scripted sessions are not in the learning curves: only trainee exercises count; "
+                "give --all-modes to include them.")
+        self.assertIn(note, res.stderr)
+        with open(os.path.join(out, "cohort.html")) as fh:
+            html = fh.read()
+        self.assertIn("0 sessions in the learning curves", html)
+        self.assertIn('<p class="note">' + note + "</p>", html)
+        res, out = self.batch("--all-modes")
+        self.assertNotIn("--all-modes", res.stderr)
+        with open(os.path.join(out, "cohort.html")) as fh:
+            self.assertNotIn('class="note"', fh.read())
+        self.session("tia", "P", 9)
+        res, out = self.batch("--trainee", "tia")
+        self.assertIn("3 sessions are outside the selection (sessions of trainee tia) and in no output; "
+                      "run without --trainee to include them.", res.stderr)
+
+    def test_hostile_trainee_ids_are_escaped_and_shortened(self):
+        hostile = "\x1b[31m\u202eevil" + "x" * 100000
+        self.session(hostile, "P", 1)
+        self.session("ann", "F", 2)
+        res, out = self.batch()
+        self.assertEqual(res.returncode, 0, res.stderr)
+        with open(os.path.join(out, "summary.csv"), newline="", encoding="utf-8") as fh:
+            text = fh.read()
+        for raw in ("\x1b", "\u202e"):
+            self.assertNotIn(raw, text)
+        rows = list(csv.DictReader(text.splitlines()))
+        self.assertEqual(rows[0]["trainee"], "\\x1b[31m\\u{202e}evil" + "x" * 100000)  # escaped, not shortened
+        self.assertEqual(rows[1]["trainee"], "ann")
+        with open(os.path.join(out, "cohort.html"), encoding="utf-8") as fh:
+            html = fh.read()
+        for raw in ("\x1b", "\u202e"):
+            self.assertFalse(raw in html, repr(raw))
+        # What a reader sees (outside the title attributes) is at most 60 characters of it.
+        visible = re.sub(r' title="[^"]*"', "", html)
+        self.assertFalse("x" * 60 in visible, "more than 60 characters shown")
+        shown = "\\x1b[31m\\u{202e}evil" + "x" * (60 - 10) + "\u2026"  # 60 characters of the original
+        cell = "<span title=\"\\x1b[31m\\u{202e}evil" + "x" * 100000 + "\">" + shown + "</span>"
+        self.assertTrue(cell in html, "the shortened cell with its title is missing")
+        self.assertIn("overflow-wrap:anywhere", html)
 
 
 class SpreadsheetSafe(unittest.TestCase):

@@ -80,6 +80,23 @@ TEST(SummaryCsv, LocalizationErrorIsEmptyWhenNothingWasFound) {
   EXPECT_TRUE(std::isnan(mean_localization_error_mm(s)));
 }
 
+TEST(SummaryCsv, ControlAndBidiCharactersInTextCellsAreWrittenEscaped) {
+  EXPECT_EQ(csv_text("alice"), "alice");
+  EXPECT_EQ(csv_text("O'Neil, Bob"), "\"O'Neil, Bob\"");            // plain text: as csv_field
+  EXPECT_EQ(csv_text("=1+1"), "\"'=1+1\"");                          // the formula guard stays
+  EXPECT_EQ(csv_text("a\x1b[2Jb"), "a\\x1b[2Jb");                  // ESC
+  EXPECT_EQ(csv_text("a\nb"), "a\\x0ab");                          // no raw line break
+  EXPECT_EQ(csv_text(std::string("a\0b", 3)), "a\\x00b");           // NUL
+  EXPECT_EQ(csv_text("x\xE2\x80\xAEy"), "x\\u{202e}y");           // RIGHT-TO-LEFT OVERRIDE
+  const std::string long_id(100000, 'x');
+  EXPECT_EQ(csv_text(long_id), long_id);  // escaped, never shortened: the cell keeps the value
+  auto header = testing::synthetic_header();
+  header.trainee = "eve\x1b]0;owned\x07";
+  const auto row = csv_row(header, testing::synthetic_score());
+  EXPECT_EQ(row.find('\x1b'), std::string::npos);
+  EXPECT_NE(row.find("eve\\x1b]0;owned\\x07"), std::string::npos);
+}
+
 TEST(Xapi, DurationIsIso8601InHundredths) {
   EXPECT_EQ(iso8601_duration(183.25), "PT183.25S");
   EXPECT_EQ(iso8601_duration(60.0), "PT60S");

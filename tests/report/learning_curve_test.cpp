@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "palpa/report/cohort.hpp"
+#include "palpa/report/cohort_tables.hpp"
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
 #include "report_fixture.hpp"
@@ -208,6 +209,97 @@ TEST(Cohort, AProficientTraineeIsSaidSoAndTheSelectionIsNamed) {
   EXPECT_NE(html.find("<td class=\"ok\">proficient since attempt 9</td>"), std::string::npos);
   EXPECT_NE(html.find("<h2 id=\"t-dana\">dana: proficient since attempt 9</h2>"), std::string::npos);
   EXPECT_NE(html.find("Covers sessions from 2026-11-01 to 2026-11-30, case default."), std::string::npos);
+}
+
+TEST(CaseFileStem, SlugIdsKeepTheirSlugOthersCarryAHash) {
+  EXPECT_EQ(case_file_stem("urn:palpa:case:default"), "default");
+  EXPECT_NE(case_file_stem("default"), case_file_stem("urn:palpa:case:default"));  // never the same file
+  EXPECT_EQ(case_file_stem("default").rfind("default-", 0), 0u);
+  EXPECT_NE(case_file_stem("urn:palpa:case:a b"), case_file_stem("urn:palpa:case:a_b"));
+  EXPECT_EQ(case_file_stem("urn:palpa:case:../x").find('/'), std::string::npos);
+  EXPECT_NE(case_file_stem("urn:palpa:case:../x").front(), '.');
+  EXPECT_FALSE(case_file_stem("").empty());
+}
+
+SessionHeader header_at(const std::string& trainee, const std::string& case_id, const std::string& station) {
+  auto h = testing::synthetic_header();
+  h.trainee = trainee;
+  h.case_id = case_id;
+  h.case_title = case_id + " title";
+  h.station = station;
+  return h;
+}
+
+TEST(GroupSummaries, CountPassRateMedianAndProficientTraineesPerCaseAndStation) {
+  const std::vector<SessionHeader> h{header_at("ann", "c1", "s1"), header_at("ann", "c1", "s2"),
+                                     header_at("ben", "c1", "s1"), header_at("ben", "c2", "s1"),
+                                     header_at("cal", "c2", "")};
+  // ann passes c1 twice, ben fails c1 and abandons c2, cal passes c2.
+  const std::vector<SessionFacts> facts{{&h[0], 0.8, true, false}, {&h[1], 0.9, true, false},
+                                        {&h[2], 0.4, false, false}, {&h[3], 0.0, false, true},
+                                        {&h[4], 0.7, true, false}};
+  const ProficientPairs proficient{{"ann", "c1"}, {"cal", "c2"}};
+  const auto cases = case_summaries(facts, proficient);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].key, "c1");
+  EXPECT_EQ(cases[0].name, "c1 title");
+  EXPECT_EQ(cases[0].sessions, 3u);
+  EXPECT_EQ(cases[0].scored, 3u);
+  EXPECT_EQ(cases[0].passed, 2u);
+  EXPECT_DOUBLE_EQ(cases[0].median_score_100, 80.0);
+  EXPECT_EQ(cases[0].trainees, 2u);
+  EXPECT_EQ(cases[0].proficient_trainees, 1u);
+  EXPECT_EQ(cases[1].scored, 1u);  // the abandoned attempt has no exam
+  EXPECT_DOUBLE_EQ(cases[1].median_score_100, 70.0);
+  const auto stations = station_summaries(facts, proficient);
+  ASSERT_EQ(stations.size(), 3u);
+  EXPECT_EQ(stations[0].key, "");  // not recorded sorts first
+  EXPECT_EQ(stations[1].key, "s1");
+  EXPECT_EQ(stations[1].sessions, 3u);
+  EXPECT_DOUBLE_EQ(stations[1].median_score_100, 60.0);  // (40 + 80) / 2; the abandoned one left out
+  EXPECT_EQ(stations[1].proficient_trainees, 1u);         // ann (c1), not ben
+  EXPECT_EQ(cases_csv(cases),
+            "case_id,case,sessions,scored,passed,pass_rate,median_score_100,trainees,proficient_trainees\n"
+            "c1,c1 title,3,3,2,0.667,80.0,2,1\nc2,c2 title,2,1,1,1.000,70.0,2,1\n");
+  EXPECT_EQ(stations_csv(stations).substr(0, stations_csv(stations).find('\n')),
+            "station,sessions,scored,passed,pass_rate,median_score_100,trainees,proficient_trainees");
+}
+
+TEST(LeftOutNotes, NameTheSessionsAndTheOptionThatIncludesThem) {
+  EXPECT_TRUE(left_out_notes({}).empty());
+  LeftOut l;
+  l.by_mode = {{"scripted", 12}, {"replay\x1b[2J", 1}};
+  l.abandoned = 3;
+  l.filtered = 2;
+  l.filter = "sessions of trainee dana";
+  l.filter_options = "--trainee";
+  const auto notes = left_out_notes(l);
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_EQ(notes[0], "1 replay\\x1b[2J, 12 scripted sessions are not in the learning curves: only trainee "
+                      "exercises count; give --all-modes to include them.");
+  EXPECT_EQ(notes[1], "3 abandoned attempts are not in the learning curves; give --include-abandoned to include them.");
+  EXPECT_EQ(notes[2], "2 sessions are outside the selection (sessions of trainee dana) and in no output; run "
+                      "without --trainee to include them.");
+}
+
+TEST(Cohort, UntrustedTextIsEscapedAndShortenedWithTheWholeValueInTheTitle) {
+  TraineeCurve t;
+  t.trainee = "\xE2\x80\xAE" "eve\x1b[31m" + std::string(1000, 'x');
+  t.file_stem = trainee_file_stem(t.trainee);
+  t.attempts.push_back(attempt_of(testing::synthetic_header(), testing::synthetic_score()));
+  CohortPage page;
+  page.trainees = {t};
+  page.sessions = {{t.trainee, "2026-11-01T09:00:00Z", "failed", relative_href("sessions", "a b#?", ".html")}};
+  page.notes = {"3 scripted sessions are not in the learning curves"};
+  const auto html = cohort_html(page);
+  EXPECT_EQ(html.find('\x1b'), std::string::npos);
+  EXPECT_EQ(html.find("\xE2\x80\xAE"), std::string::npos);
+  const std::string cell = "\\u{202e}eve\\x1b[31m" + std::string(60 - 9, 'x') + "\xE2\x80\xA6</span>";
+  EXPECT_NE(html.find(cell), std::string::npos);  // 60 characters shown, then "…"
+  EXPECT_NE(html.find("title=\"\\u{202e}eve\\x1b[31m" + std::string(1000, 'x') + "\""), std::string::npos);
+  EXPECT_NE(html.find("overflow-wrap:anywhere"), std::string::npos);
+  EXPECT_NE(html.find("href=\"sessions/a%20b%23%3F.html\""), std::string::npos);
+  EXPECT_NE(html.find("<p class=\"note\">3 scripted sessions are not in the learning curves</p>"), std::string::npos);
 }
 
 }  // namespace

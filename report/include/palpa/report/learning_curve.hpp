@@ -87,4 +87,9 @@ cv::Mat learning_curve_plot(const std::string& trainee, const std::vector<Attemp
 /// never share a file.
 std::string trainee_file_stem(std::string_view trainee);
 
+/// A file name stem for a case id: the slug of "urn:palpa:case:SLUG" as it is ("default");
+/// any other id as trainee_file_stem makes it, always with "-" and 8 hex digits of the id's
+/// SHA-1, so that two different ids never share a file.
+std::string case_file_stem(std::string_view case_id);
+
 }  // namespace palpa::report

@@ -2,6 +2,7 @@
 // One CSV row per scored session. The header is a contract with users' scripts: add
 // columns only at the end, never rename or reorder.
 #include <string>
+#include <string_view>
 
 #include "palpa/report/session_header.hpp"
 #include "palpa/score/score.hpp"
@@ -17,6 +18,12 @@ const std::string& csv_header();
 /// the score out of 100; numbers rounded to their unit (csv_number.hpp); text fields quoted
 /// per RFC 4180.
 std::string csv_row(const SessionHeader& header, const score::Score& score);
+
+/// A CSV text cell: RFC 4180 quoting and the formula guard of csv_field, after printable()
+/// without shortening, so that an ESC, a NUL, a line break or a bidirectional override in a
+/// name from a session file is written as \x1b, \u{202e} ... and never reaches a reader's
+/// terminal or spreadsheet raw. Plain text is written as csv_field writes it.
+std::string csv_text(std::string_view text);
 
 /// "passed", "failed", "abandoned" (the trainee gave it up: no exam) or "incomplete" (cut short).
 const char* outcome_of(const score::Score& score);
