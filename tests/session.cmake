@@ -10,6 +10,7 @@ add_executable(session_tests
   core/session/session_replay_test.cpp
   core/session/session_format2_test.cpp
   core/session/session_stream_test.cpp
+  core/session/session_id_test.cpp
 )
 target_link_libraries(session_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)
 target_compile_definitions(session_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -55,6 +55,7 @@ struct BatchOptions {
   /// --store --out: the station each downloaded file was pushed from (the store's word, not
   /// the file's extra.station), and the stored sessions that could not be written.
   std::map<std::string, std::string> station_of;
+  std::map<std::string, StoredRow> row_of;  ///< --store --out: each file's row, which it must agree with
   std::vector<report::SkippedFile> not_downloaded;
 };
 
@@ -184,6 +185,19 @@ std::string one_line(std::string text) {
   return text;
 }
 
+/// A downloaded file must say what its row in the store says (the row passed the server's
+/// checks; the file did not): throws SessionError naming the first field that differs.
+void check_row(const session::Session& head, const StoredRow& row, const std::string& file) {
+  const char* field = head.info.id != row.session_id                   ? "id"
+                      : head.info.trainee != row.trainee               ? "trainee"
+                      : session::session_mode(head.info) != row.mode ? "mode"
+                                                                       : nullptr;
+  if (field != nullptr) {
+    throw session::SessionError(file, "meta", fmt::format("the file's {} differs from the store's row; not reported",
+                                                          field));
+  }
+}
+
 /// Reads and scores one session (and writes its report files); the samples are dropped on return.
 Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOptions& o, std::string& output_error) {
   Outcome outcome;
@@ -196,6 +210,7 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     session::SampleStream stream(input.file);
     auto header = report::header_of(stream.head().info, input.file);
     if (const auto it = o.station_of.find(input.file); it != o.station_of.end()) header.station = it->second;
+    if (const auto it = o.row_of.find(input.file); it != o.row_of.end()) check_row(stream.head(), it->second, input.file);
     if (!o.filter.matches(header)) {
       // Read through all the same: a damaged file is reported whatever the filter.
       while (!stream.next().empty()) {
@@ -500,6 +515,7 @@ Command add_batch_command(CLI::App& parent) {
                 auto folder = *o;
                 folder.paths = d.files;
                 folder.station_of = d.station_of;
+                folder.row_of = d.row_of;
                 folder.not_downloaded = d.skipped;
                 return run_batch(folder);
               });

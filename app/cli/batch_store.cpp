@@ -52,7 +52,10 @@ void work_on(store::Connection& c, const store::Claim& claim, const std::string&
   IsolatedScore scored;
   try {
     scored = score_in_child(claim, limits);
-  } catch (const store::StoreError& e) {  // no memory file, pipe or process: this machine's trouble
+  } catch (const store::StoreError& e) {  // no memory file, pipe or process: this machine's trouble, retried
+    scored.error = store::describe(claim) + ": " + e.what();
+  } catch (const std::exception& e) {  // a row the scorer cannot be handed (text that is not UTF-8)
+    scored.outcome = ScoreOutcome::Refused;
     scored.error = store::describe(claim) + ": " + e.what();
   }
   bool held = false;
@@ -198,12 +201,17 @@ StoreDownload download(store::Connection& c, const fs::path& folder, const repor
   StoreDownload d;
   for (const auto& s : store::list_sessions(c, coarse(filter))) {
     const auto name = report::printable(fmt::format("store session {} from station {}", s.session_id, s.station), 300);
+    if (s.ended_unscored) {  // a file the workers refused (forged, not a session) or retired
+      d.skipped.push_back({name, report::printable("not scored by the workers: " + s.last_error, 400)});
+      continue;
+    }
     try {
       const auto path = download_path(folder, s);
       fs::create_directories(path.parent_path());
       write_copy(path, store::session_file(c, s.id), s.sha256);
       d.files.push_back(path.string());
       d.station_of[path.string()] = s.station;
+      d.row_of[path.string()] = {s.session_id, s.trainee, s.mode};
     } catch (const store::StoreError& e) {
       if (e.unreachable()) throw;
       d.skipped.push_back({name, report::printable(e.what(), 400)});

@@ -27,11 +27,19 @@ struct StoreBatchOptions {
   report::SessionFilter filter;
 };
 
+/// The fields of a stored session's row that reports show: a downloaded file whose own
+/// metadata say otherwise is not reported (it was forged after the server's checks).
+struct StoredRow {
+  std::string session_id, trainee, mode;
+};
+
 /// What came down from the store for the folder batch: the files, the station that pushed
 /// each (the store's word, not the file's), and the rows that could not be written.
 struct StoreDownload {
   std::vector<std::string> files;
   std::map<std::string, std::string> station_of;  ///< file -> the station it was pushed from
+  /// file -> what the store's row says of it (checked by the server); the file must agree.
+  std::map<std::string, StoredRow> row_of;
   std::vector<report::SkippedFile> skipped;
 };
 

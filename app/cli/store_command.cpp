@@ -80,17 +80,27 @@ bool queue(const store::StoreSettings& s, const store::PreparedSession& p, const
   }
 }
 
+// Queues `p` unless the same session waits already; kOk, or the exit code of a failure.
+int queue_unless_waiting(const store::StoreSettings& s, const store::PreparedSession& p, const std::string& why) {
+  try {
+    if (store::is_queued(s.outbox, p)) {
+      say(fmt::format("already queued: {} ({})", p.path.string(), why));
+      return kOk;
+    }
+  } catch (const store::StoreError& e) {  // another file under its id: never replaced
+    print_error(e.what());
+    return kBadInput;
+  }
+  return queue(s, p, why) ? kOk : kFailure;
+}
+
 // The store runs a newer schema than this Palpa: nothing can be pushed until the station is
 // upgraded, but nothing is lost either: the sessions wait in the outbox.
 int queue_for_upgrade(const store::StoreSettings& s, const std::vector<store::PreparedSession>& all,
                       const std::string& why) {
   int code = kQueuedForUpgrade;
   for (const auto& p : all) {
-    if (std::filesystem::exists(store::queued_file(s.outbox, p.session_id))) {
-      say(fmt::format("already queued: {} ({})", p.path.string(), why));
-    } else if (!queue(s, p, why)) {
-      code = kFailure;
-    }
+    if (const int queued = queue_unless_waiting(s, p, why); queued != kOk) code = queued;
   }
   print_error(why + "; the sessions wait in the outbox until this station runs the newer Palpa");
   return code;
@@ -159,11 +169,7 @@ int run_push(const StoreOptions& o) {
     // The entries already waiting count this attempt; the ones queued now start at 1.
     store::mark_unreachable(s->outbox, e.what());
     for (const auto& p : prepared) {
-      if (std::filesystem::exists(store::queued_file(s->outbox, p.session_id))) {
-        say(fmt::format("already queued: {} ({})", p.path.string(), e.what()));
-      } else if (!queue(*s, p, e.what())) {
-        code = kFailure;
-      }
+      if (const int queued = queue_unless_waiting(*s, p, e.what()); queued != kOk && code != kFailure) code = queued;
     }
     if (prepared.empty()) say(fmt::format("outbox: not sent ({})", e.what()));
     return code;

@@ -26,9 +26,21 @@ std::pair<char32_t, std::size_t> decode(std::string_view s, std::size_t i) {
   return {cp, n};
 }
 
+// Controls, bidirectional controls and the invisible characters (Unicode's
+// Default_Ignorable_Code_Point, as far as a name could hide one): shown by code point.
 bool hidden(char32_t cp) {
-  return cp < 0x20 || (cp >= 0x7F && cp <= 0x9F) || cp == 0x200E || cp == 0x200F || (cp >= 0x202A && cp <= 0x202E) ||
-         (cp >= 0x2066 && cp <= 0x2069) || cp == 0x2028 || cp == 0x2029;
+  struct Range {
+    char32_t first, last;
+  };
+  static constexpr Range kHidden[] = {
+      {0x00, 0x1F},       {0x7F, 0x9F},     {0xAD, 0xAD},     {0x34F, 0x34F},   {0x61C, 0x61C},
+      {0x115F, 0x1160},   {0x17B4, 0x17B5}, {0x180B, 0x180F}, {0x200B, 0x200F}, {0x2028, 0x202E},
+      {0x2060, 0x206F},   {0x3164, 0x3164}, {0xFE00, 0xFE0F}, {0xFEFF, 0xFEFF}, {0xFFA0, 0xFFA0},
+      {0xFFF0, 0xFFFB},   {0xE0000, 0xE0FFF}};
+  for (const auto& r : kHidden) {
+    if (cp >= r.first && cp <= r.last) return true;
+  }
+  return false;
 }
 
 }  // namespace

@@ -15,8 +15,9 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
       "list the stored sessions",
       "SELECT s.id, s.session_id, s.station, t.name, s.file_name, s.sha256, "
       "to_char(s.started_at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'), "
-      "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id) "
-      "FROM sessions s JOIN trainees t ON t.id = s.trainee_id "
+      "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id), s.mode, "
+      "coalesce(w.done, false), coalesce(w.last_error, '') "
+      "FROM sessions s JOIN trainees t ON t.id = s.trainee_id LEFT JOIN work_queue w ON w.session_id = s.id "
       "WHERE ($1::double precision IS NULL OR s.started_at >= to_timestamp($1::double precision)) "
       "AND ($2::double precision IS NULL OR s.started_at < to_timestamp($2::double precision)) "
       "AND ($3::text IS NULL OR t.name = $3::text) "
@@ -24,8 +25,19 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
       {optional_seconds(f.since_s), optional_seconds(f.until_s), optional_text(f.trainee)});
   std::vector<StoredSession> all;
   for (int i = 0; i < r.rows(); ++i) {
-    all.push_back({r.integer(i, 0), r.text(i, 1), r.text(i, 2), r.text(i, 3), r.text(i, 4), r.text(i, 5),
-                   r.text(i, 6), r.text(i, 7) == "t"});
+    StoredSession s;
+    s.id = r.integer(i, 0);
+    s.session_id = r.text(i, 1);
+    s.station = r.text(i, 2);
+    s.trainee = r.text(i, 3);
+    s.file_name = r.text(i, 4);
+    s.sha256 = r.text(i, 5);
+    s.started_at = r.text(i, 6);
+    s.mode = r.text(i, 8);
+    s.scored = r.text(i, 7) == "t";
+    s.ended_unscored = r.text(i, 9) == "t" && !s.scored;
+    s.last_error = r.text(i, 10);
+    all.push_back(std::move(s));
   }
   return all;
 }

@@ -156,6 +156,12 @@ BEGIN
     EXECUTE format('GRANT palpa_owner TO %I', current_user);
   END IF;
   EXECUTE format('REVOKE TEMPORARY, CREATE ON DATABASE %I FROM PUBLIC', current_database());
+  -- Large objects live outside every table: nobody but the admin may create them here.
+  IF (SELECT rolsuper FROM pg_roles WHERE rolname = current_user) THEN
+    REVOKE EXECUTE ON FUNCTION pg_catalog.lo_create(oid), pg_catalog.lo_creat(integer),
+      pg_catalog.lo_from_bytea(oid, bytea), pg_catalog.lo_import(text), pg_catalog.lo_import(text, oid)
+      FROM PUBLIC;
+  END IF;
 END
 $owner$;
 REVOKE CREATE ON SCHEMA public FROM PUBLIC;
@@ -182,6 +188,9 @@ ALTER TABLE public.scores OWNER TO palpa_owner;
 ALTER TABLE public.work_queue OWNER TO palpa_owner;
 ALTER TABLE public.store_settings OWNER TO palpa_owner;
 ALTER VIEW public.station_sessions OWNER TO palpa_owner;
+-- A barrier: a station's own WHERE conditions (a function that raises an error naming its
+-- argument, say) run only on the rows the view lets it see, never before its filter.
+ALTER VIEW public.station_sessions SET (security_barrier = true);
 DROP FUNCTION public.palpa_push_session(text, text, text, text, text, jsonb, timestamptz, text, boolean, bigint,
                                         text, jsonb, bytea);
 )sql";
@@ -198,8 +207,13 @@ BEGIN
   IF pg_catalog.char_length(p_value) > p_max THEN
     RAISE EXCEPTION 'field %: longer than % characters', p_field, p_max USING ERRCODE = '22023';
   END IF;
-  IF p_value ~ '[\u0001-\u001f\u007f-\u009f\u200e\u200f\u202a-\u202e\u2066-\u2069\u2028\u2029]' THEN
-    RAISE EXCEPTION 'field %: holds a control or bidirectional-override character', p_field USING ERRCODE = '22023';
+  -- Controls, bidirectional controls and the invisible (default-ignorable) characters: a
+  -- name must look like what it is (no "rο om" with a hidden mark, no reordered text).
+  IF p_value ~ ('[\u0001-\u001f\u007f-\u009f\u00ad\u034f\u061c\u115f\u1160\u17b4\u17b5\u180b-\u180f'
+                '\u200b-\u200f\u2028-\u202e\u2060-\u206f\u3164\ufe00-\ufe0f\ufeff\uffa0\ufff0-\ufffb'
+                '\U000e0000-\U000e0fff]') THEN
+    RAISE EXCEPTION 'field %: holds a control, invisible or bidirectional-override character', p_field
+      USING ERRCODE = '22023';
   END IF;
 END
 $fn$;
@@ -212,6 +226,8 @@ CREATE FUNCTION public.palpa_check_session(p_session_id text, p_trainee text, p_
   RETURNS void LANGUAGE plpgsql STABLE SET search_path = pg_catalog, pg_temp AS $fn$
 DECLARE
   v_max bigint;
+  v_huge constant jsonpath := 'strict $.** ? (@.type() == "number" && (@ > 1e308 || @ < -1e308 || '
+                              '(@ != 0 && @ < 1e-300 && @ > -1e-300)))';
 BEGIN
   IF p_session_id IS NULL OR p_session_id !~ '^([0-9a-f]{32}|[0-9a-f]{16})$' THEN
     RAISE EXCEPTION 'field id: not a session id (32 lowercase hex digits)' USING ERRCODE = '22023';
@@ -240,13 +256,17 @@ BEGIN
   IF p_samples IS NULL OR p_samples < 0 OR p_samples > 72000000 THEN
     RAISE EXCEPTION 'field samples: not between 0 and 72000000' USING ERRCODE = '22023';
   END IF;
-  IF p_case IS NULL OR pg_catalog.jsonb_typeof(p_case) <> 'object'
-     OR pg_catalog.octet_length(p_case::text) > 16777216 THEN
-    RAISE EXCEPTION 'field case: not a case document (a JSON object of at most 16 MiB)' USING ERRCODE = '22023';
+  -- Sizes as stored (pg_column_size), and no number a double cannot hold: 1e131071 takes a
+  -- few bytes in jsonb and 131072 characters as text, which the case key is computed from.
+  IF p_case IS NULL OR pg_catalog.jsonb_typeof(p_case) <> 'object' OR pg_catalog.pg_column_size(p_case) > 16777216
+     OR pg_catalog.jsonb_path_exists(p_case, v_huge) THEN
+    RAISE EXCEPTION 'field case: not a case document (a JSON object of at most 16 MiB, numbers a double can hold)'
+      USING ERRCODE = '22023';
   END IF;
   IF p_events IS NULL OR pg_catalog.jsonb_typeof(p_events) <> 'array'
-     OR pg_catalog.octet_length(p_events::text) > 16777216 THEN
-    RAISE EXCEPTION 'field events: not a JSON array of at most 16 MiB' USING ERRCODE = '22023';
+     OR pg_catalog.pg_column_size(p_events) > 16777216 OR pg_catalog.jsonb_path_exists(p_events, v_huge) THEN
+    RAISE EXCEPTION 'field events: not a JSON array of at most 16 MiB (numbers a double can hold)'
+      USING ERRCODE = '22023';
   END IF;
   SELECT st.max_file_bytes INTO v_max FROM public.store_settings st;
   IF p_file IS NULL OR pg_catalog.octet_length(p_file) > v_max THEN
@@ -280,6 +300,10 @@ DECLARE
   v_id bigint;
 BEGIN
   PERFORM public.palpa_check_text('station', p_station, 64);
+  IF p_station !~ '^[A-Za-z0-9][A-Za-z0-9 ._-]*$' THEN
+    RAISE EXCEPTION 'field station: only letters A-Z, digits, space, dot, underscore and dash'
+      USING ERRCODE = '22023';
+  END IF;
   PERFORM public.palpa_check_session(p_session_id, p_trainee, p_case_title, p_case, p_started_at, p_mode,
                                      p_complete, p_samples, p_file_name, p_events, p_file);
   -- A station name belongs to the login that first pushed under it (or that a coordinator

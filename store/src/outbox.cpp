@@ -1,8 +1,10 @@
 #include "palpa/store/outbox.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <ctime>
 #include <fstream>
 #include <tuple>
@@ -13,6 +15,7 @@
 #include "palpa/report/printable.hpp"
 #include "palpa/session/session_id.hpp"
 #include "palpa/store/session_checks.hpp"
+#include "palpa/store/sha256.hpp"
 
 namespace palpa::store {
 namespace {
@@ -34,21 +37,35 @@ fs::path meta_path(const fs::path& file) {
   return p;
 }
 
+// Writes all of `text` to a new file `tmp` (O_EXCL | O_NOFOLLOW: never through a link or
+// over a file someone put there); false on any failure, with nothing left behind.
+bool write_new_file(const fs::path& tmp, const std::string& text) {
+  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) return false;
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const auto n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  const bool whole = done == text.size() && fsync(fd) == 0;
+  if (close(fd) != 0 || !whole) {
+    std::error_code ec;
+    fs::remove(tmp, ec);  // a partial copy would keep a full disk full
+    return false;
+  }
+  return true;
+}
+
 // Writes `text` to `path` through a temporary file renamed into place.
 void write_atomically(const fs::path& path, const std::string& text) {
   const auto tmp = path.parent_path() / fmt::format(".{}.{}.tmp", path.filename().string(), getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    out.close();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);  // a partial copy would keep a full disk full
-      throw StoreError(fmt::format("{}: outbox: cannot write (disk full?)", path.string()), false);
-    }
-  }
   std::error_code ec;
+  if (fs::is_symlink(tmp, ec)) fs::remove(tmp, ec);  // a leftover link is removed, never followed
+  if (!write_new_file(tmp, text)) {
+    throw StoreError(fmt::format("{}: outbox: cannot write (disk full, or a file in the way)", path.string()), false);
+  }
   fs::rename(tmp, path, ec);
   if (ec) {
     fs::remove(tmp, ec);
@@ -94,13 +111,25 @@ fs::path queued_file(const fs::path& outbox, const std::string& session_id) {
   return outbox / (session_id + ".palpa");
 }
 
+bool is_queued(const fs::path& outbox, const PreparedSession& s) {
+  const auto file = queued_file(outbox, s.session_id);
+  std::error_code ec;
+  if (!fs::exists(file, ec) && !fs::is_symlink(file, ec)) return false;
+  if (fs::is_symlink(file, ec) || sha256_hex(read_file_bytes(file)) != s.sha256) {
+    throw StoreError(fmt::format("{}: outbox: {} already holds another session with this id; not queued",
+                                 report::printable(s.path.string(), 200), file.string()),
+                     false);
+  }
+  return true;
+}
+
 OutboxEntry queue_session(const fs::path& outbox, const PreparedSession& s, const std::string& error) {
   check_pushable(s);  // its id becomes the file name: only a session the store would take
   std::error_code ec;
   fs::create_directories(outbox, ec);
   if (ec) throw StoreError(fmt::format("{}: outbox: cannot create: {}", outbox.string(), ec.message()), false);
   const auto file = queued_file(outbox, s.session_id);
-  if (fs::exists(file, ec)) {
+  if (is_queued(outbox, s)) {
     auto e = read_entry(file);
     record_attempt(e, error);
     return read_entry(file);

@@ -22,12 +22,27 @@ std::string newer_message(const Connection& c, int found) {
                      c.target(), found, known_schema_version());
 }
 
+// The store's text rules (lengths in characters, the characters refused) hold only in UTF-8.
+void check_encoding(Connection& c) {
+  const auto encoding = c.exec("read the encoding", "SELECT current_setting('server_encoding')").text(0, 0);
+  if (encoding != "UTF8") {
+    throw StoreError(fmt::format("store: {} is encoded in {}; the store needs UTF8: create the database with "
+                                 "createdb -E UTF8 -T template0",
+                                 c.target(), encoding),
+                     false);
+  }
+}
+
 }  // namespace
 
 int known_schema_version() { return static_cast<int>(migrations().size()); }
 
 InitResult init_schema(Connection& c, int target) {
   if (target <= 0 || target > known_schema_version()) target = known_schema_version();
+  check_encoding(c);
+  // A lock held elsewhere (a station can hold one on palpa_schema by reading it in an open
+  // transaction) makes init fail with a message instead of waiting for ever.
+  c.exec("limit lock waits", "SET lock_timeout = '60s'");
   InitResult result;
   {
     Transaction t(c);

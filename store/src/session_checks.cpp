@@ -70,8 +70,17 @@ void check_pushable(const PreparedSession& s) {
   throw StoreError(fmt::format("{}: {}; not pushed", report::printable(s.path.string(), 200), problem), false);
 }
 
+// Station names are administrative: plain ASCII, so that no two look alike.
 void check_station_name(const std::string& station) {
-  if (auto problem = text_problem("station", station, kMaxStationChars); !problem.empty()) {
+  auto problem = text_problem("station", station, kMaxStationChars);
+  const auto alnum = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'); };
+  const auto plain = [&alnum](char c) { return alnum(c) || c == ' ' || c == '.' || c == '_' || c == '-'; };
+  const bool plain_name =
+      !station.empty() && alnum(station.front()) && std::all_of(station.begin(), station.end(), plain);
+  if (problem.empty() && !plain_name) {
+    problem = "field station: only letters A-Z, digits, space, dot, underscore and dash, from a letter or digit";
+  }
+  if (!problem.empty()) {
     throw StoreError(fmt::format("station name: {}", problem.substr(std::string_view("field station: ").size())),
                      false);
   }

@@ -178,6 +178,28 @@ SELECT * FROM public.palpa_push_session('room-1', '%s', 'mallory', '', '{}'::jso
             self.pg.sql("REVOKE TEMPORARY ON DATABASE %s FROM station_evil" % self.DB)
         self.assertEqual(self.pg.sql("SELECT pg_has_role('station_evil', 'palpa_coordinator', 'MEMBER')"), "f")
 
+    def test_the_view_leaks_nothing_through_a_stations_own_conditions(self):
+        # Without a security barrier, a cheap condition that raises an error naming its
+        # argument ran before the view's filter and printed other stations' ids and trainees.
+        theirs = self.pg.sql("SELECT string_agg(session_id, ' ') FROM sessions WHERE uploaded_by <> 'station_evil'",
+                             self.DB).split()
+        trainees = self.pg.sql("SELECT string_agg(DISTINCT t.name, ' ') FROM trainees t JOIN sessions s ON "
+                               "s.trainee_id = t.id WHERE s.uploaded_by <> 'station_evil' AND t.id NOT IN (SELECT "
+                               "trainee_id FROM sessions WHERE uploaded_by = 'station_evil')", self.DB).split()
+        self.assertTrue(theirs)
+        for attack in ("SELECT * FROM station_sessions WHERE has_database_privilege(session_id, 'CONNECT');",
+                       "SELECT * FROM station_sessions WHERE has_database_privilege('%s', sha256);" % self.DB,
+                       "SET enable_nestloop = off; SELECT * FROM station_sessions WHERE CASE WHEN trainee "
+                       "NOT IN ('x') THEN trainee::int ELSE 0 END = 1;"):
+            res = self.sql(attack, "station_evil", check=False)
+            for leaked in theirs + [t for t in trainees if len(t) > 3]:
+                self.assertNotIn(leaked, res.stderr + res.stdout, attack)
+
+    def test_large_objects_are_refused(self):
+        res = self.sql("SELECT lo_from_bytea(0, '\\x00'::bytea);", "station_evil", check=False)
+        self.assertNotEqual(res.returncode, 0)
+        self.assertIn("permission denied", res.stderr)
+
     def test_the_functions_are_owned_and_granted_safely(self):
         def function(column):
             return self.pg.sql("SELECT %s FROM pg_proc WHERE proname = 'palpa_push_session'" % column, self.DB)
@@ -222,6 +244,14 @@ SELECT * FROM public.palpa_push_session('room-1', '%s', 'mallory', '', '{}'::jso
             ({"case": "'[1, 2]'::jsonb"}, "field case"),
             ({"events": "'{}'::jsonb"}, "field events"),
             ({"title": literal("t\x07")}, "field case title"),
+            ({"trainee": literal("al\u200bice")}, "field trainee"),
+            ({"trainee": literal("\ufeffbob")}, "field trainee"),
+            ({"trainee": literal("bob\u061c")}, "field trainee"),
+            ({"station": literal("r\u03bfom-1")}, "field station"),
+            ({"station": literal("../room")}, "field station"),
+            # 1e131071 is a few bytes of jsonb and 131072 characters of text: refused at once.
+            ({"case": "('{\"a\": [' || repeat('1e131071,', 999) || '1]}')::jsonb"}, "field case"),
+            ({"events": "('[' || repeat('1e-16000,', 999) || '1]')::jsonb"}, "field events"),
         ]
         for override, field in cases:
             with self.subTest(field=field, value=str(override)[:60]):
@@ -421,6 +451,40 @@ class FreshStore(HostileStation):
         self.assertIn("trying again in", err)
         self.assertEqual(self.pg.sql("SELECT count(*) FROM scores sc JOIN sessions s ON s.id = sc.session_id "
                                      "WHERE s.session_id = '%s'" % self.new_id(70), self.DB), "1", err)
+
+    def test_a_database_not_in_utf8_is_refused(self):
+        self.pg.sql("CREATE DATABASE ascii ENCODING 'SQL_ASCII' LC_COLLATE 'C' LC_CTYPE 'C' TEMPLATE template0")
+        res = run_cli("store", "init", self.pg.url("ascii"))
+        self.assertEqual(res.returncode, 1, res.stdout)
+        self.assertIn("is encoded in SQL_ASCII; the store needs UTF8", res.stderr)
+        self.assertEqual(self.pg.sql("SELECT to_regclass('palpa_schema') IS NULL", "ascii"), "t")
+
+    def test_the_outbox_never_writes_through_a_link_nor_replaces_a_queued_file(self):
+        outbox = self.path("outbox-links")
+        os.makedirs(outbox)
+        victim = self.path("victim.txt")
+        with open(victim, "w") as f:
+            f.write("precious")
+        sid = self.new_id(90)
+        down = "host=127.0.0.1 port=%d dbname=x user=y connect_timeout=3" % pg_test_server.free_port()
+        for n in range(2):  # links where its copy and its record would go
+            os.symlink(victim, os.path.join(outbox, sid + (".palpa" if n == 0 else ".json")))
+        f = with_meta(self.small, self.path("linked.palpa"), id=sid)
+        res = run_cli("store", "push", f, "--store", down, "--station", "room-1", "--outbox", outbox)
+        self.assertEqual(res.returncode, 2, res.stderr)
+        self.assertIn("already holds another session with this id", res.stderr)
+        with open(victim) as v:
+            self.assertEqual(v.read(), "precious")
+        # Another file with an id already queued is refused, the queued one kept.
+        clean = self.path("outbox-clean")
+        first = with_meta(self.small, self.path("first.palpa"), id=self.new_id(91))
+        self.assertEqual(run_cli("store", "push", first, "--store", down, "--station", "room-1", "--outbox",
+                                 clean).returncode, 0)
+        second = with_meta(self.small, self.path("second.palpa"), id=self.new_id(91), trainee="other")
+        res = run_cli("store", "push", second, "--store", down, "--station", "room-1", "--outbox", clean)
+        self.assertEqual(res.returncode, 2, res.stderr)
+        with open(os.path.join(clean, self.new_id(91) + ".palpa"), "rb") as q, open(first, "rb") as o:
+            self.assertEqual(q.read(), o.read())
 
     def test_settings_mistakes_are_not_queued_and_a_newer_store_queues(self):
         outbox = self.path("outbox-settings")

@@ -27,6 +27,15 @@ TEST(Printable, BidirectionalControlsAreShownByTheirCodePoint) {
   EXPECT_FALSE(is_printable("x\u202ay"));
 }
 
+TEST(Printable, InvisibleCharactersThatMakeLookAlikeNamesAreShown) {
+  EXPECT_EQ(printable("al\u200bice"), "al\\u{200b}ice");      // zero-width space
+  EXPECT_EQ(printable("\ufeffbob"), "\\u{feff}bob");          // byte-order mark
+  EXPECT_EQ(printable("a\u00adb\u061cc"), "a\\xadb\\u{061c}c");  // soft hyphen, Arabic letter mark
+  EXPECT_EQ(printable("x\U000E0041y"), "x\\u{e0041}y");       // a tag character
+  EXPECT_EQ(printable("\u3164"), "\\u{3164}");                // Hangul filler
+  EXPECT_TRUE(is_printable("r\u03bfom"));  // a Greek omicron is visible: shown as it is
+}
+
 TEST(Printable, InvalidUtf8IsEscapedByteByByte) {
   EXPECT_EQ(printable("a\xff" "b"), "a\\xffb");
   EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");            // overlong "/"

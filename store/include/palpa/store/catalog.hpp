@@ -18,8 +18,10 @@ struct SessionFilter {
 
 struct StoredSession {
   long long id = 0;
-  std::string session_id, station, trainee, file_name, sha256, started_at;
-  bool scored = false;  ///< has a score row (any scorer version)
+  std::string session_id, station, trainee, file_name, sha256, started_at, mode;
+  bool scored = false;          ///< has a score row (any scorer version)
+  bool ended_unscored = false;  ///< the workers ended it without a score: refused or retired
+  std::string last_error;       ///< why, as the worker wrote it
 };
 
 /// The stored sessions matching `filter`, by station then start time.

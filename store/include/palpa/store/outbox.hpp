@@ -24,6 +24,10 @@ struct OutboxEntry {
 /// The outbox's copy of a session: OUTBOX/SESSION_ID.palpa (with SESSION_ID.json beside it).
 std::filesystem::path queued_file(const std::filesystem::path& outbox, const std::string& session_id);
 
+/// True when `s` waits in the outbox already (the same bytes); throws StoreError when the
+/// outbox holds another file under its id (or a link), which is never replaced.
+bool is_queued(const std::filesystem::path& outbox, const PreparedSession& s);
+
 /// Copies the session into the outbox atomically (a temporary copy renamed into place),
 /// creating the folder; when it is queued already, records the new error only. Returns
 /// the entry. Throws StoreError naming the outbox when it cannot be written.

@@ -26,7 +26,8 @@ std::string text_problem(std::string_view field, std::string_view value, std::si
 /// refuse `s`: its id, trainee, file name, case title, mode, start date or sample count.
 void check_pushable(const PreparedSession& s);
 
-/// Throws StoreError when `station` is no name the store accepts.
+/// Throws StoreError when `station` is no name the store accepts: 1 to 64 of A-Z a-z 0-9,
+/// space, dot, underscore and dash, starting with a letter or digit.
 void check_station_name(const std::string& station);
 
 }  // namespace palpa::store
