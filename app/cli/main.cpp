@@ -14,7 +14,7 @@ namespace palpa::cli {
 // Messages carry names from files and the store: escaped, so no ESC, NUL or bidirectional
 // override reaches the terminal (report/printable.hpp).
 void print_error(const std::string& message) {
-  std::fprintf(stderr, "palpa-cli: error: %s\n", report::printable(message, 4000).c_str());
+  std::fprintf(stderr, "palpa-cli: error: %s\n", report::printable(message, 1000).c_str());
 }
 
 }  // namespace palpa::cli

@@ -34,7 +34,7 @@ struct StoreOptions {
 };
 
 // Lines carry names from session files and the store: escaped (report/printable.hpp).
-void say(const std::string& line) { std::printf("%s\n", report::printable(line, 4000).c_str()); }
+void say(const std::string& line) { std::printf("%s\n", report::printable(line, 1000).c_str()); }
 
 int run_init(const StoreOptions& o) {
   try {

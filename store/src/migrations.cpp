@@ -313,14 +313,6 @@ BEGIN
   IF v_owner IS DISTINCT FROM session_user THEN
     RAISE EXCEPTION 'station "%" is registered to another login', p_station USING ERRCODE = '42501';
   END IF;
-  SELECT s.sha256, s.uploaded_by INTO v_sha, v_by FROM public.sessions s WHERE s.session_id = p_session_id;
-  IF FOUND THEN
-    IF v_by IS DISTINCT FROM session_user THEN
-      RAISE EXCEPTION 'session %: this id is taken; not stored', p_session_id USING ERRCODE = '23505';
-    END IF;
-    RETURN QUERY SELECT false, v_sha;
-    RETURN;
-  END IF;
   INSERT INTO public.trainees(name) VALUES (p_trainee) ON CONFLICT (name) DO NOTHING;
   SELECT t.id INTO v_trainee FROM public.trainees t WHERE t.name = p_trainee;
   v_case_sha := pg_catalog.encode(pg_catalog.sha256(pg_catalog.convert_to(p_case::text, 'UTF8')), 'hex');
@@ -334,7 +326,7 @@ BEGIN
             p_events, p_file, session_user)
     ON CONFLICT (session_id) DO NOTHING
     RETURNING id INTO v_id;
-  IF v_id IS NULL THEN  -- the same session pushed at the same time from elsewhere
+  IF v_id IS NULL THEN  -- stored before (a second push, or at the same time from elsewhere)
     SELECT s.sha256, s.uploaded_by INTO v_sha, v_by FROM public.sessions s WHERE s.session_id = p_session_id;
     IF v_by IS DISTINCT FROM session_user THEN
       RAISE EXCEPTION 'session %: this id is taken; not stored', p_session_id USING ERRCODE = '23505';
