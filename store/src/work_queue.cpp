@@ -69,7 +69,7 @@ std::optional<Claim> claim_next(Connection& c, const std::string& owner, double 
       "UPDATE work_queue w SET lease_owner = $1, lease_expires = now() + make_interval(secs => $2::double precision), "
       "attempts = w.attempts + 1 "
       "WHERE w.session_id = (SELECT q.session_id FROM work_queue q WHERE NOT q.done "
-      "AND (q.lease_expires IS NULL OR q.lease_expires < now()) ORDER BY q.session_id "
+      "AND (q.lease_expires IS NULL OR q.lease_expires < now() OR q.lease_owner = $1) ORDER BY q.session_id "
       "LIMIT 1 FOR UPDATE SKIP LOCKED) RETURNING w.session_id",
       {Param::text(owner), Param::text(fmt::format("{}", lease_s))});
   if (claimed.rows() == 0) return std::nullopt;

@@ -28,7 +28,9 @@ struct Claim {
 std::string describe(const Claim& claim);
 
 /// Claims the next unscored session for `owner` for `lease_s` seconds; nothing when no
-/// session is free to claim now. First retires the sessions claimed max_score_attempts
+/// session is free to claim now. A session `owner` holds already is free to it: a worker
+/// whose connection broke mid-session (a server restart) takes it up again on reconnecting
+/// instead of leaving it until its lease runs out. First retires the sessions claimed max_score_attempts
 /// times without a score (their scorers were killed: poison sessions), keeping the reason.
 std::optional<Claim> claim_next(Connection& c, const std::string& owner, double lease_s);
 
