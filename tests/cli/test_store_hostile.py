@@ -25,6 +25,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tools"))
 import pg_test_server  # noqa: E402
+from constant_session import write_constant_session  # noqa: E402
 
 CLI = REPO = None
 SQLITE_HEADER = "53514c69746520666f726d6174203300"
@@ -395,11 +396,9 @@ class FreshStore(HostileStation):
         if os.environ.get("ASAN_OPTIONS"):
             self.skipTest("a sanitized scorer takes no address-space limit; the release suite runs this")
         ticks = int(os.environ.get("PALPA_POISON_TICKS", "72000000"))
-        poison = self.path("poison.palpa")
-        made = subprocess.run([sys.executable, os.path.join(REPO, "tests", "tools", "amplified_session.py"),
-                               self.small, poison, "--ticks", str(ticks), "--id", self.new_id(50)],
-                              capture_output=True, text=True)
-        self.assertEqual(made.returncode, 0, made.stderr)
+        constant = self.path("constant.palpa")
+        write_constant_session(constant, REPO, ticks)
+        poison = with_meta(constant, self.path("poison.palpa"), id=self.new_id(50))
         self.assertLess(os.path.getsize(poison), 200000)
         normal = [with_meta(self.small, self.path("normal%d.palpa" % n), id=self.new_id(60 + n)) for n in range(2)]
         res = self.push("station_1", "room-1", poison, *normal)
