@@ -635,10 +635,12 @@ void TraineeWindow::show_upload_state(const QString& text) {
 
 void TraineeWindow::closeEvent(QCloseEvent* event) {
   if (exercise_->started() && !exercise_->finished()) {
-    // A signal or the application quitting closes without a question: the attempt ends
-    // complete and unscored here (AppWindows marks the windows it closes that way).
+    // Closed without a question: with a reason (a signal, the window destroyed) the attempt
+    // is abandoned with it; without one (an instructor closing a Try it) it ends complete
+    // and unscored.
     const bool ask = !property(kCloseWithoutAsking).toBool();
-    switch (ask ? ask_before_closing() : CloseChoice::Finish) {
+    const QString reason = property(kCloseReason).toString();
+    switch (ask ? ask_before_closing() : reason.isEmpty() ? CloseChoice::Finish : CloseChoice::Abandon) {
       case CloseChoice::GoOn:
         event->ignore();
         return;
@@ -648,7 +650,7 @@ void TraineeWindow::closeEvent(QCloseEvent* event) {
         return;
       case CloseChoice::Abandon:
         try {
-          exercise_->abandon("the trainee closed the window");
+          exercise_->abandon(reason.isEmpty() ? "the trainee closed the window" : reason.toStdString());
         } catch (const std::exception&) {
           // The file keeps what was committed; nothing more to do on the way out.
         }

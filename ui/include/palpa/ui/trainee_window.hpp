@@ -47,6 +47,10 @@ class TraineeWindow : public QMainWindow {
   /// A dynamic property: set it true on the window before closing it to close without the
   /// question (a signal, the application quitting); the attempt then ends complete.
   static constexpr const char* kCloseWithoutAsking = "palpaCloseWithoutAsking";
+  /// A dynamic property (a string): with kCloseWithoutAsking, a running attempt is abandoned
+  /// with this reason ("SIGTERM", "window destroyed": the End note "abandoned: SIGTERM")
+  /// instead of ending complete.
+  static constexpr const char* kCloseReason = "palpaCloseReason";
   /// Takes the exercise; starts it (session recording, haptic loop) unless `start` is false
   /// (a screenshot needs no session). Throws what LiveExercise::start throws.
   TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const QString& case_name, bool start = true,
