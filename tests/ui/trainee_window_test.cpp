@@ -33,6 +33,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/live/live_exercise.hpp"
 #include "palpa/score/figures.hpp"
+#include "palpa/ui/body_view.hpp"
 #include "palpa/ui/coverage_overlay.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
@@ -304,20 +305,18 @@ class TraineeWindowTest : public QObject {
     QVERIFY(tried >= 5);
   }
 
-  // The measure can fail: seen from the front and low, the crest hides the far slope.
+  // The measure can fail: from the front and above (the earlier default view, 56 degrees
+  // up), the crest of the default breast hides its far slope.
   void theViewShareDropsWhenTheCrestHidesTheFarSlope() {
     QTemporaryDir dir;
     palpa::ui::TraineeWindow window(make_exercise(dir.filePath("v.palpa")), "default.json", false);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    auto* camera = window.renderer()->GetActiveCamera();
-    camera->Elevation(-60.0);  // towards the front: the view line grazes the crest
-    camera->OrthogonalizeViewUp();
-    window.renderer()->ResetCameraClippingRange();
+    palpa::ui::frame_from_front(*window.renderer(), palpa::ui::scene_bounds(window.exercise().scene()), 1.5);
     window.frame();
     const double share = window.exam_region_view_share();
-    qInfo("from the front: %.1f %%", 100.0 * share);
-    QVERIFY2(share < 0.95, qPrintable(QString::number(share)));
+    qInfo("from the front (the earlier default view): %.1f %%", 100.0 * share);
+    QVERIFY2(share < 0.97, qPrintable(QString::number(share)));  // 94.5 % on a 2-core Debian 12 VM
   }
 
   // The overlay shows what was touched, live; its figure is the score's coverage.

@@ -19,7 +19,7 @@ namespace palpa::ui {
 namespace {
 
 constexpr double kLift = 0.0008;  // m: the dots float this far off the rest skin (no z-fighting)
-constexpr float kDotPixels = 4.0F;
+constexpr float kDotPixels = 3.0F;
 
 }  // namespace
 
