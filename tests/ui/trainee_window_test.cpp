@@ -536,6 +536,15 @@ class TraineeWindowTest : public QObject {
     const QStringList lines = r.err.trimmed().split('\n');
     QCOMPARE(lines.size(), 1);
     QVERIFY2(lines[0].startsWith(bad + ": line "), qPrintable(lines[0]));
+    // A session file's problem reads the same way: the file first.
+    const QString existing = dir.filePath("taken.palpa");
+    {
+      QFile f(existing);
+      QVERIFY(f.open(QIODevice::WriteOnly));
+    }
+    const Run taken = run_palpa({"--session", existing});
+    QCOMPARE(taken.code, 2);
+    QCOMPARE(taken.err.trimmed(), existing + ": file: exists (a session is never overwritten)");
     const Run mode = run_palpa({"--mode", "nonsense"});
     QCOMPARE(mode.code, 2);
     // Numbers: NaN, infinities and seeds beyond 2^64 - 1 are refused in one line naming the option.
