@@ -437,7 +437,8 @@ class TraineeWindowTest : public QObject {
     QVERIFY(says);
   }
 
-  // Ctrl+W closes the window from its keys, with or without a window manager.
+  // Ctrl+W closes the window and Ctrl+Q all of them from the view's keys, with or without a
+  // window manager.
   void ctrlWClosesTheWindow() {
     QTemporaryDir dir;
     palpa::ui::TraineeWindow window(make_exercise(dir.filePath("w.palpa")), "default.json", false);
@@ -445,6 +446,14 @@ class TraineeWindowTest : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QTest::keyClick(window.view()->input(), Qt::Key_W, Qt::ControlModifier);
     QTRY_VERIFY(!window.isVisible());
+    // Ctrl+Q closes every window.
+    palpa::ui::TraineeWindow first(make_exercise(dir.filePath("q1.palpa")), "default.json", false);
+    palpa::ui::TraineeWindow second(make_exercise(dir.filePath("q2.palpa")), "default.json", false);
+    first.show();
+    second.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&second));
+    QTest::keyClick(second.view()->input(), Qt::Key_Q, Qt::ControlModifier);
+    QTRY_VERIFY(!first.isVisible() && !second.isVisible());
   }
 
   void bodiesOutOfViewAreCulled() {
