@@ -66,6 +66,18 @@ Command add_tessellation(CLI::App& bench) {
   return {tessellation, [out, case_path] { return run_bench_tessellation(*out, *case_path); }};
 }
 
+Command add_contrast_modes(CLI::App& bench) {
+  auto out = std::make_shared<std::string>("bench-results");
+  auto seed = std::make_shared<std::uint64_t>(7);
+  auto* contrast = bench.add_subcommand(
+      "contrast-modes", "How clearly the tumour stands out: level mode's force against force mode's stiffness "
+                        "(dF/dd), over the tumour and 12 mm away, on default.json and the ladder cases. Writes "
+                        "contrast-modes.csv into --out.");
+  contrast->add_option("--seed", *seed, "places the tumours; default 7");
+  contrast->add_option("--out", *out, "output folder; default bench-results");
+  return {contrast, [out, seed] { return run_bench_contrast_modes(*out, *seed); }};
+}
+
 Command add_fidelity(CLI::App& bench) {
   auto out = std::make_shared<std::string>("bench-results");
   auto reference_dir = std::make_shared<std::string>();
@@ -136,7 +148,7 @@ Command add_bench_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("bench", "Benchmarks that report run time together with the error it buys.");
   app->require_subcommand(1);
   const std::vector<Command> suites = {add_accuracy(*app), add_dynamics(*app), add_tessellation(*app),
-                                       add_fidelity(*app), add_table1(*app)};
+                                       add_fidelity(*app), add_table1(*app), add_contrast_modes(*app)};
   return {app, [suites] {
             for (const auto& suite : suites)
               if (suite.app->parsed()) return suite.run();

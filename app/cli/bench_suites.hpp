@@ -1,6 +1,7 @@
 #pragma once
 // Benchmark suites of `palpa-cli bench` that run on a case file. Each writes a CSV and a
 // PNG into its output folder, prints a table and returns the process exit code.
+#include <cstdint>
 #include <filesystem>
 
 namespace palpa::cli {
@@ -12,5 +13,13 @@ namespace palpa::cli {
 /// out_dir/tessellation.csv and out_dir/tessellation.png. Returns 0, or 2 for a case
 /// that cannot be loaded or fitted (one line per problem on stderr).
 int run_bench_tessellation(const std::filesystem::path& out_dir, const std::filesystem::path& case_path);
+
+/// palpa-cli bench contrast-modes: the tumour's contrast in level mode (force at the middle
+/// share of light, medium and deep) against force mode (tangent stiffness dF/dd at 3, 6 and
+/// 10 N) over the first tumour of default.json and the ladder cases (tumours placed with
+/// `seed`) and 12 mm away, with fresh probes of the rest scene. Writes
+/// out_dir/contrast-modes.csv and prints the table. Returns 0, or 2 for a case that cannot
+/// be loaded.
+int run_bench_contrast_modes(const std::filesystem::path& out_dir, std::uint64_t seed);
 
 }  // namespace palpa::cli

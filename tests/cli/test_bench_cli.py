@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""palpa-cli bench accuracy, dynamics, tessellation and fidelity, end to end: each runs a
+"""palpa-cli bench accuracy, dynamics, tessellation, fidelity and contrast-modes, end to end: each runs a
 small configuration and its CSV figures are checked against properties that must hold (the
 fast foot point at round-off, the exact integrator exact, tessellation within tolerance,
 the calibrated force within 10 % of the committed finite-element curves).
@@ -100,6 +100,26 @@ class BenchTessellation(unittest.TestCase):
             res = run(["bench", "tessellation", "--case", os.path.join(d, "missing.json"), "--out", d])
             self.assertEqual(res.returncode, 2)
             self.assertIn("missing.json", res.stderr)
+
+
+class BenchContrastModes(unittest.TestCase):
+    def test_every_case_has_both_modes_with_sound_readings(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_") as d:
+            res = run(["bench", "contrast-modes", "--out", d])
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "contrast-modes.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual(len(rows), 5 * 6)  # five cases, three settings per mode
+            for r in rows:
+                over, away = float(r["reading_over"]), float(r["reading_away"])
+                self.assertGreater(away, 0.0, r)
+                self.assertAlmostEqual(float(r["contrast"]), over / away - 1.0, places=9)
+            # Independent of the bench: a stiff mass under the tissue makes the press
+            # stiffer over it than 12 mm away in force mode, and the finger sinks less there.
+            for r in rows:
+                if r["mode"] == "force" and r["case"] in ("default.json", "ladder-1.json"):
+                    self.assertGreater(float(r["contrast"]), 0.0, r)
+                    self.assertLess(float(r["depth_over_m"]), float(r["depth_away_m"]), r)
 
 
 class BenchTable1(unittest.TestCase):

@@ -524,6 +524,61 @@ class TraineeWindowTest : public QObject {
     QVERIFY(!QFile::exists(dir.filePath("trainee.palpa")));
   }
 
+  // The gauge on its own, fed contacts: words and colours for the bound, a stall and a
+  // fault; the stiffness in force mode with the band by the score's own edges; no share of
+  // a rim; the needle in its own strip, clear of the band names.
+  void gaugeSaysBoundStallFaultStiffnessAndRim() {
+    palpa::ui::ForceGauge g(0.2, 0.5);
+    g.resize(300, g.minimumSizeHint().height());
+    palpa::live::ContactInfo c;
+    c.body = 0;
+    c.force = 6.0;
+    c.depth = 0.02498;
+    c.thickness = 0.05;
+    c.fraction = 0.4996;  // the score calls this medium: never printed as "50 %"
+    c.level = palpa::live::PressureLevel::Medium;
+    c.force_bound = 18.0;
+    c.safety_limit = 20.0;
+    g.set_contact(c);
+    QCOMPARE(g.lines()[0], QString("6.0 N  medium"));
+    QVERIFY2(g.lines()[1].contains("(49 % of 50 mm)"), qPrintable(g.text()));
+    c.fraction = 0.5;
+    c.depth = 0.025;
+    c.level = palpa::live::PressureLevel::Deep;
+    c.force_mode = true;
+    c.stiffness = 420.0;  // N/m
+    g.set_contact(c);
+    QCOMPARE(g.lines()[0], QString("6.0 N  stiffness 0.42 N/mm"));
+    QCOMPARE(g.lines()[1], QString("deep: depth 25.0 mm (50 % of 50 mm)"));
+    QCOMPARE(g.alert(), palpa::ui::ForceGauge::Alert::None);
+    c.force = 18.0;
+    c.at_force_bound = true;
+    g.set_contact(c);
+    QVERIFY2(g.lines()[0].contains("held at 18 N: the safety limit is 20 N"), qPrintable(g.text()));
+    QCOMPARE(g.alert(), palpa::ui::ForceGauge::Alert::Bound);
+    c.loop = palpa::live::LoopState::Stalled;
+    g.set_contact(c);
+    QVERIFY2(g.lines()[0].contains("haptic loop stalled"), qPrintable(g.text()));
+    palpa::live::ContactInfo off;  // a fault: the engine sees no contact and 0 N
+    off.loop = palpa::live::LoopState::Fault;
+    g.set_contact(off);
+    QVERIFY2(g.lines()[0].contains("device fault") && !g.lines()[0].contains("no contact"), qPrintable(g.text()));
+    QVERIFY(palpa::ui::ForceGauge::alert_colour(g.alert()) != QColor(Qt::black));
+    c = palpa::live::ContactInfo{};
+    c.body = 0;
+    c.force = 0.4;
+    c.depth = 3e-4;
+    c.thickness = 4e-4;
+    c.fraction = 0.75;
+    c.level = palpa::live::PressureLevel::Deep;
+    g.set_contact(c);
+    QVERIFY2(g.lines()[1].contains("at the rim") && !g.lines()[1].contains("%"), qPrintable(g.text()));
+    const auto box = g.layout();
+    QVERIFY(!box.marker.intersects(box.bar));
+    QVERIFY(!box.marker.intersects(box.force_line));
+    QVERIFY(box.depth_line.bottom() <= g.height());
+  }
+
   void commandLineHelpVersionAndBadCase() {
     const Run help = run_palpa({"--help"});
     QCOMPARE(help.code, 0);

@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <QPainter>
 
 namespace palpa::ui {
 
+namespace {
+
+constexpr double kMarkerHeight = 7.0;  // px: the needle's strip under the bar
+constexpr double kRimThickness = 1e-3; // m: thinner than this, a share of it means nothing
+
+}  // namespace
+
 ForceGauge::ForceGauge(double light_max, double deep_min, QWidget* parent)
     : QWidget(parent), light_max_(light_max), deep_min_(deep_min), scale_(std::max(0.8, deep_min * 1.5)) {
   setMinimumHeight(minimumSizeHint().height());
   setToolTip(tr("Indentation as a share of the local tissue thickness: light, medium and deep pressure "
-                "as the score counts them"));
+                "as the score counts them. Presses stop at 90 % of the case's safety limit."));
 }
 
 void ForceGauge::set_contact(const live::ContactInfo& contact) {
@@ -19,14 +27,55 @@ void ForceGauge::set_contact(const live::ContactInfo& contact) {
   update();
 }
 
+ForceGauge::Alert ForceGauge::alert() const {
+  if (contact_.loop == live::LoopState::Fault) return Alert::Fault;
+  if (contact_.loop == live::LoopState::Stalled) return Alert::Stalled;
+  return contact_.at_force_bound ? Alert::Bound : Alert::None;
+}
+
+QColor ForceGauge::alert_colour(Alert alert) {
+  switch (alert) {
+    case Alert::Fault: return {200, 0, 0};
+    case Alert::Stalled: return {170, 100, 0};
+    case Alert::Bound: return {200, 70, 0};
+    case Alert::None: break;
+  }
+  return Qt::black;
+}
+
+QString ForceGauge::force_words() const {
+  switch (alert()) {
+    case Alert::Fault: return tr("device fault: the force is ramped off");
+    case Alert::Stalled: return tr("haptic loop stalled: the force is held");
+    case Alert::Bound:
+      return tr("held at %1 N: the safety limit is %2 N")
+          .arg(contact_.force_bound, 0, 'f', 0)
+          .arg(contact_.safety_limit, 0, 'f', 0);
+    case Alert::None: break;
+  }
+  if (contact_.level == live::PressureLevel::None) return tr("no contact");
+  if (contact_.force_mode) return tr("stiffness %1 N/mm").arg(contact_.stiffness * 1e-3, 0, 'f', 2);
+  return live::to_string(contact_.level);
+}
+
+QString ForceGauge::depth_words() const {
+  if (contact_.level == live::PressureLevel::None) return {};
+  const QString depth = tr("depth %1 mm").arg(contact_.depth * 1e3, 0, 'f', 1);
+  QString line = depth;
+  if (contact_.thickness < kRimThickness) {
+    line = tr("%1 at the rim").arg(depth);
+  } else {
+    // Rounded down: 49.96 % is medium for the score and reads "49 %", never "50 % medium".
+    const double percent = std::floor(contact_.fraction * 100.0 + 1e-9);
+    line = tr("%1 (%2 % of %3 mm)").arg(depth).arg(percent, 0, 'f', 0).arg(contact_.thickness * 1e3, 0, 'f', 0);
+  }
+  // In force mode the first line has the stiffness: the band goes here.
+  if (contact_.force_mode || alert() != Alert::None) line = QString(live::to_string(contact_.level)) + ": " + line;
+  return line;
+}
+
 QStringList ForceGauge::lines() const {
-  const QString force = QString::number(contact_.force, 'f', 1) + " N";
-  if (contact_.level == live::PressureLevel::None) return {force + "  " + tr("no contact"), QString()};
-  return {force + "  " + live::to_string(contact_.level),
-          tr("depth %1 mm (%2 % of %3 mm)")
-              .arg(contact_.depth * 1e3, 0, 'f', 1)
-              .arg(contact_.fraction * 100.0, 0, 'f', 0)
-              .arg(contact_.thickness * 1e3, 0, 'f', 0)};
+  return {QString::number(contact_.force, 'f', 1) + " N  " + force_words(), depth_words()};
 }
 
 QString ForceGauge::text() const {
@@ -36,7 +85,7 @@ QString ForceGauge::text() const {
 
 QSize ForceGauge::minimumSizeHint() const {
   const int line = fontMetrics().height() + 2;
-  return {160, 4 + std::max(18, line + 2) + 4 + 2 * line + 4};
+  return {160, 4 + std::max(18, line + 2) + static_cast<int>(kMarkerHeight) + 2 + 2 * line + 4};
 }
 
 QSize ForceGauge::sizeHint() const { return {260, minimumSizeHint().height()}; }
@@ -45,15 +94,13 @@ ForceGauge::Layout ForceGauge::layout() const {
   const double line = fontMetrics().height() + 2.0;
   Layout g;
   g.bar = QRectF(4.0, 4.0, width() - 8.0, std::max(18.0, line + 2.0));
-  g.force_line = QRectF(g.bar.left(), g.bar.bottom() + 4.0, g.bar.width(), line);
+  g.marker = QRectF(g.bar.left(), g.bar.bottom(), g.bar.width(), kMarkerHeight);
+  g.force_line = QRectF(g.bar.left(), g.marker.bottom() + 2.0, g.bar.width(), line);
   g.depth_line = QRectF(g.bar.left(), g.force_line.bottom(), g.bar.width(), line);
   return g;
 }
 
-void ForceGauge::paintEvent(QPaintEvent*) {
-  QPainter p(this);
-  p.setRenderHint(QPainter::Antialiasing);
-  const Layout g = layout();
+void ForceGauge::paint_bands(QPainter& p, const Layout& g) const {
   const QRectF& bar = g.bar;
   const auto x_of = [&](double fraction) { return bar.left() + bar.width() * std::clamp(fraction / scale_, 0.0, 1.0); };
   // Bands: light, medium, deep, each named inside its own stretch of the bar.
@@ -69,25 +116,41 @@ void ForceGauge::paintEvent(QPaintEvent*) {
     const int room = static_cast<int>(band.width()) - 4;
     if (room > 0) p.drawText(band, Qt::AlignCenter, fontMetrics().elidedText(names[k], Qt::ElideRight, room));
   }
-  // The press so far, as a dark fill, and a needle.
-  if (contact_.level != live::PressureLevel::None) {
-    const double x = x_of(contact_.fraction);
-    p.setPen(Qt::NoPen);
-    p.setBrush(QColor(0, 0, 0, 70));
-    p.drawRect(QRectF(QPointF(bar.left(), bar.top() + bar.height() * 0.3), QPointF(x, bar.bottom() - bar.height() * 0.3)));
-    p.setPen(QPen(Qt::black, 3.0));
-    p.drawLine(QPointF(x, bar.top() - 2.0), QPointF(x, bar.bottom() + 2.0));
-  }
-  p.setPen(Qt::black);
+  // The frame says an alert in its colour.
+  p.setPen(QPen(alert_colour(alert()), alert() == Alert::None ? 1.0 : 2.0));
   p.setBrush(Qt::NoBrush);
   p.drawRect(bar);
+}
+
+// The press so far: a dark fill in the strip under the bar and a needle pointing up at the
+// bar's edge, clear of the band names.
+void ForceGauge::paint_marker(QPainter& p, const Layout& g) const {
+  if (contact_.level == live::PressureLevel::None) return;
+  const QRectF& m = g.marker;
+  const double x = m.left() + m.width() * std::clamp(contact_.fraction / scale_, 0.0, 1.0);
+  p.setPen(Qt::NoPen);
+  p.setBrush(QColor(0, 0, 0, 70));
+  p.drawRect(QRectF(QPointF(m.left(), m.top() + 1.0), QPointF(x, m.bottom() - 1.0)));
+  p.setBrush(alert() == Alert::None ? QColor(Qt::black) : alert_colour(alert()));
+  const std::array<QPointF, 3> needle{QPointF(x, m.top()), QPointF(x - 4.0, m.bottom()), QPointF(x + 4.0, m.bottom())};
+  p.drawPolygon(needle.data(), static_cast<int>(needle.size()));
+}
+
+void ForceGauge::paintEvent(QPaintEvent*) {
+  QPainter p(this);
+  p.setRenderHint(QPainter::Antialiasing);
+  const Layout g = layout();
+  paint_bands(p, g);
+  paint_marker(p, g);
   const auto l = lines();
   const int room = static_cast<int>(g.force_line.width());
   QFont bold = font();
   bold.setBold(true);
   p.setFont(bold);
+  p.setPen(alert_colour(alert()));
   p.drawText(g.force_line, Qt::AlignLeft | Qt::AlignVCenter, QFontMetrics(bold).elidedText(l[0], Qt::ElideRight, room));
   p.setFont(font());
+  p.setPen(Qt::black);
   p.drawText(g.depth_line, Qt::AlignLeft | Qt::AlignVCenter, fontMetrics().elidedText(l[1], Qt::ElideRight, room));
 }
 
