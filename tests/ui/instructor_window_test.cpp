@@ -13,10 +13,14 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QImage>
+#include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMessageBox>
 #include <QProcess>
+#include <QRegularExpression>
 #include <QPushButton>
 #include <QScrollArea>
 #include <QScrollBar>
@@ -27,6 +31,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
 #include <QtTest>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -85,12 +90,30 @@ void show(InstructorWindow& window) {
   QTest::qWait(50);
 }
 
+// A problem (not a warning) about this JSON pointer is listed.
 bool has_problem(const InstructorWindow& window, const QString& where) {
   for (int k = 0; k < window.problems()->count(); ++k) {
-    if (window.problems()->item(k)->text().startsWith(where + ": ")) return true;
+    const auto* item = window.problems()->item(k);
+    if (item->data(Qt::UserRole).toString() == where && !item->data(InstructorWindow::kWarningRole).toBool()) return true;
   }
   return false;
 }
+
+// The listed texts, problems and warnings.
+QStringList problem_texts(const InstructorWindow& window) {
+  QStringList out;
+  for (int k = 0; k < window.problems()->count(); ++k) out << window.problems()->item(k)->text();
+  return out;
+}
+
+// "12.0-15.0" within 0.15 mm of lo-hi.
+bool near_range(const QString& text, double lo, double hi) {
+  const QStringList ends = text.split('-');
+  return ends.size() == 2 && std::abs(ends[0].toDouble() - lo) < 0.15 && std::abs(ends[1].toDouble() - hi) < 0.15;
+}
+
+// Whether a spin box is marked as holding a problem.
+bool marked(const QWidget* box) { return box->styleSheet().contains("#ffc8c8"); }
 
 /// A 64 x 32 grayscale ramp, black at the left to white at the right.
 QImage ramp_along_x() {
@@ -268,7 +291,7 @@ class InstructorWindowTest : public QObject {
     window.tumour_panel()->stiffness_box()->setValue(1500.0);
     QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
     window.tumour_panel()->randomize_box()->setChecked(true);
-    window.tumour_panel()->rule_box(4)->setValue(0.45);  // depth fraction from 0.45
+    window.tumour_panel()->rule_box(4)->setValue(45.0);  // random depth from 45 % of the thickness
     QVERIFY(window.draft().placement(0).has_value());
     QCOMPARE(window.draft().placement(0)->depth[0], 0.45);
     const QString path = dir.filePath("prostate.json");
@@ -305,8 +328,10 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(cell->background().color(), QColor(255, 200, 200));
     QVERIFY(window.tumour_panel()->table()->item(0, 0)->background().style() == Qt::NoBrush);
     // Choosing the problem selects the tumour, whose radius box is then marked too.
+    QVERIFY2(problem_texts(window).contains("Tumour 1, radius: 0 mm is outside (0, 1000] mm"),
+             qPrintable(problem_texts(window).join("\n")));
     for (int k = 0; k < window.problems()->count(); ++k) {
-      if (window.problems()->item(k)->text().startsWith("/tumors/0/radius")) window.problems()->setCurrentRow(k);
+      if (window.problems()->item(k)->data(Qt::UserRole).toString() == "/tumors/0/radius") window.problems()->setCurrentRow(k);
     }
     QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
     QVERIFY(!window.tumour_panel()->radius_box()->styleSheet().isEmpty());
@@ -334,6 +359,84 @@ class InstructorWindowTest : public QObject {
     QVERIFY(!has_problem(window, "/title"));
     QVERIFY(window.title_edit()->toolTip().isEmpty());
     QVERIFY(window.title_edit()->styleSheet().isEmpty());
+  }
+
+  // Bad values typed into the selected tumour's boxes: the problem names the table's row
+  // and the field in mm, and exactly that field's box is marked. On the 30 mm slab (top at
+  // z = 30 mm, base at 0) a 20 mm radius 12 mm deep reaches 20 - 12 = 8 mm above the top;
+  // 40 mm deep puts the centre 10 mm under the base, the 4 mm tumour 14 mm beyond it.
+  void typedBadValuesNameTheRowAndMarkTheirBox() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    auto* panel = window.tumour_panel();
+    type_into(panel->depth_box(), "12");
+    type_into(panel->radius_box(), "4");
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(-0.03, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
+    QCOMPARE(panel->selected(), std::optional<std::size_t>(1));
+    QVERIFY(window.draft().validate().empty());
+
+    type_into(panel->radius_box(), "20");
+    QCOMPARE(window.draft().tumour(1)->radius, 0.020);
+    QCOMPARE(window.problems()->count(), 1);
+    const QString text = window.problems()->item(0)->text();
+    const QRegularExpression reach("^Tumour 2, radius: 20 mm reaches ([0-9.]+) mm beyond the skin$");
+    const auto m = reach.match(text);
+    QVERIFY2(m.hasMatch(), qPrintable(text));
+    QVERIFY2(std::abs(m.captured(1).toDouble() - 8.0) < 0.05, qPrintable(text));
+    QVERIFY(marked(panel->radius_box()));
+    QVERIFY(!marked(panel->depth_box()));
+    QVERIFY(!marked(panel->stiffness_box()));
+    QCOMPARE(panel->table()->item(1, 1)->background().color(), QColor(255, 200, 200));
+    QVERIFY(panel->table()->item(1, 0)->background().style() == Qt::NoBrush);
+    QVERIFY(panel->table()->item(0, 1)->background().style() == Qt::NoBrush);  // row 1 is fine
+
+    type_into(panel->radius_box(), "4");
+    QVERIFY(window.draft().validate().empty());
+    type_into(panel->depth_box(), "40");
+    QCOMPARE(window.problems()->count(), 1);
+    const QString deep = window.problems()->item(0)->text();
+    const QRegularExpression outside(
+        "^Tumour 2, depth: its centre is outside the body \\(the tumour reaches ([0-9.]+) mm beyond the surface\\)$");
+    const auto d = outside.match(deep);
+    QVERIFY2(d.hasMatch(), qPrintable(deep));
+    // The centre is 10 mm under the base, the sphere's far side 14 mm.
+    QVERIFY2(d.captured(1).toDouble() >= 9.95 && d.captured(1).toDouble() <= 14.05, qPrintable(deep));
+    QVERIFY(marked(panel->depth_box()));
+    QVERIFY(!marked(panel->radius_box()));
+    for (const QString& t : problem_texts(window)) QVERIFY2(!t.contains("/tumors") && !t.contains(" m "), qPrintable(t));
+  }
+
+  // Two depths, two names: "Depth below skin" (mm) and "Random depth" (% of the thickness,
+  // with the mm it gives here). On the 30 mm slab a 40-50 % rule is 12-15 mm, and the table
+  // shows that range for the randomized tumour, not the depth it was placed at.
+  void randomDepthIsNamedApartAndShownInMm() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    auto* panel = window.tumour_panel();
+    QStringList labels;
+    for (auto* l : panel->findChildren<QLabel*>()) labels << l->text();
+    QVERIFY2(labels.contains("Depth below skin") && labels.contains("Random depth") && !labels.contains("Depth"),
+             qPrintable(labels.join("|")));
+    type_into(panel->depth_box(), "8");
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
+    QCOMPARE(panel->table()->item(0, 0)->text(), QString("8.00"));
+    panel->randomize_box()->click();
+    QVERIFY(window.draft().placement(0).has_value());
+    QCOMPARE(window.draft().placement(0)->depth, (std::array<double, 2>{0.4, 0.5}));
+    // The fitted slab is 30 mm thick to within 0.3 mm.
+    QVERIFY2(near_range(panel->table()->item(0, 0)->text(), 12.0, 15.0), qPrintable(panel->table()->item(0, 0)->text()));
+    const QString note = panel->random_depth_label()->text();
+    QVERIFY2(note.startsWith("Random depth: 40-50 % of the thickness (") && note.endsWith(" mm here)"), qPrintable(note));
+    QVERIFY2(near_range(note.section('(', 1).section(' ', 0, 0), 12.0, 15.0), qPrintable(note));
+    QVERIFY(!panel->depth_box()->isEnabled());
+    type_into(panel->rule_box(5), "60");
+    QCOMPARE(window.draft().placement(0)->depth[1], 0.6);
+    QVERIFY2(near_range(panel->table()->item(0, 0)->text(), 12.0, 18.0), qPrintable(panel->table()->item(0, 0)->text()));
+    panel->randomize_box()->click();  // off: the depth it is written at again
+    QVERIFY(!window.draft().placement(0).has_value());
+    QCOMPARE(panel->table()->item(0, 0)->text(), QString("8.00"));
+    QVERIFY(panel->depth_box()->isEnabled());
   }
 
   // A preset in kPa: the breast of 3.25 kPa fat (Samani 2007), written by its modulus;
@@ -480,6 +583,7 @@ class InstructorWindowTest : public QObject {
     const auto range = window.scene().stiffness_range();
     QVERIFY2(std::abs(range[0] - 5.0) < 0.25 && std::abs(range[1] - 5.0) < 0.25,
              qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
+    QCOMPARE(window.scene().legend_labels(), std::vector<std::string>{"5 kPa"});  // uniform: its one value
 
     // A ramp along x (the grid rows) from 4 to 24 kPa: skeleton row i gets 4 + 20 i / 10 kPa.
     const QString png = dir.filePath("ramp.png");
@@ -506,6 +610,28 @@ class InstructorWindowTest : public QObject {
     const auto spread = window.scene().stiffness_range();
     QVERIFY2(spread[0] > 3.0 && spread[0] < 5.0 && spread[1] > 23.0 && spread[1] < 25.0,
              qPrintable(QString("%1 %2").arg(spread[0]).arg(spread[1])));
+    const auto labels = window.scene().legend_labels();  // a range now: five ticks from low to high
+    QCOMPARE(labels.size(), std::size_t{5});
+    QCOMPARE(labels.front(), QString::number(spread[0], 'f', 1).toStdString());
+    QCOMPARE(labels.back(), QString::number(spread[1], 'f', 1).toStdString());
+  }
+
+  // The new breast of 3.25 kPa fat is uniform: the overlay's legend reads exactly that. The
+  // map import has one name, in the Case menu and on the Body panel's button.
+  void uniformLegendAndOneImportName() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    show(window);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 3250.0);
+    window.set_stiffness_overlay(true);
+    QCOMPARE(window.scene().legend_labels(), std::vector<std::string>{"3.25 kPa"});
+    QStringList names;
+    for (auto* menu : window.menuBar()->findChildren<QMenu*>()) {
+      for (auto* action : menu->actions()) {
+        if (action->text().contains("map", Qt::CaseInsensitive)) names << action->text().remove('&');
+      }
+    }
+    QCOMPARE(names, QStringList{QString::fromUtf8("Import stiffness map…")});
+    QCOMPARE(window.preset_panel()->import_button()->text(), QString::fromUtf8("Import stiffness map…"));
   }
 
   // A 64 x 32 grayscale ramp, black at the left to white at the right (along x, the grid

@@ -28,6 +28,7 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 
+#include "palpa/author/palpability.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_scene.hpp"
 #include "palpa/ui/instructor_tumour_panel.hpp"
@@ -218,7 +219,7 @@ void InstructorWindow::build_actions() {
   overlay_->setCheckable(true);
   connect(overlay_, &QAction::toggled, this, &InstructorWindow::set_stiffness_overlay);
 
-  file->addAction(tr("Import stiffness &map..."), this, &InstructorWindow::import_dialog);
+  file->addAction(tr("Import stiffness &map…"), this, &InstructorWindow::import_dialog);
   auto* try_action = file->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
   try_action->setShortcut(QKeySequence(QStringLiteral("F5")));  // Ctrl+T is the File menu's "Train on a case"
 
@@ -281,38 +282,57 @@ void InstructorWindow::refresh() {
     if (auto t = draft_.tumour(k)) tumours.push_back(*t);
   }
   scene_->set_tumours(tumours, tumour_panel_->selected());
-  show_problems(draft_.validate());
+  const auto problems = draft_.validate();
+  std::vector<author::AuthorProblem> warnings;
+  if (problems.empty()) {
+    try {
+      warnings = author::palpability_warnings(author::check_palpability(draft_.valid_case(), draft_.source()));
+    } catch (const std::exception&) {
+      // Valid a moment ago: nothing to warn about that validate() would not say.
+    }
+  }
+  show_problems(problems, warnings);
   undo_->setEnabled(draft_.can_undo());
   redo_->setEnabled(draft_.can_redo());
   render();
 }
 
-void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
+void InstructorWindow::show_problems(const std::vector<io::Problem>& problems,
+                                     const std::vector<author::AuthorProblem>& warnings) {
   problems_->clear();
   tumour_panel_->clear_problems();
   preset_panel_->set_problem(QString());
   title_->setStyleSheet(QString());
   title_->setToolTip(QString());
-  for (const auto& p : problems) {
-    const QString where = QString::fromStdString(p.where);
-    const QString reason = QString::fromStdString(p.reason);
-    auto* item = new QListWidgetItem(where + ": " + reason, problems_);
-    item->setData(Qt::UserRole, where);
-    item->setForeground(QColor(170, 20, 20));
-    if (where.startsWith("/tumors/")) {
-      bool ok = false;
-      const int k = where.section('/', 2, 2).toInt(&ok);
-      if (ok) tumour_panel_->add_problem(static_cast<std::size_t>(k), where.section('/', 3), reason);
-    } else if (where.startsWith("/bodies") || where.startsWith("/preset")) {
-      preset_panel_->set_problem(reason);
-    } else if (where.startsWith("/title")) {
-      title_->setStyleSheet("background: #ffc8c8;");
-      title_->setToolTip(reason);
-    }
-  }
+  for (const auto& p : author::describe(problems)) show_problem(p);
   if (problems.empty()) {
-    auto* item = new QListWidgetItem(tr("No problems: the case is valid."), problems_);
+    const QString valid = warnings.empty() ? tr("No problems: the case is valid.")
+                                           : tr("No problems: the case is valid (%n warning(s) below).", "",
+                                                static_cast<int>(warnings.size()));
+    auto* item = new QListWidgetItem(valid, problems_);
     item->setForeground(QColor(20, 120, 40));
+  }
+  for (const auto& w : warnings) show_problem(w);
+}
+
+void InstructorWindow::show_problem(const author::AuthorProblem& p) {
+  using author::ProblemField;
+  const QString text = QString::fromStdString(p.text);
+  auto* item = new QListWidgetItem(text, problems_);
+  item->setData(Qt::UserRole, QString::fromStdString(p.where));
+  item->setData(kWarningRole, p.warning);
+  item->setForeground(p.warning ? QColor(150, 90, 0) : QColor(170, 20, 20));
+  if (p.warning) {
+    if (p.tumour) tumour_panel_->add_warning(*p.tumour, text);
+    return;
+  }
+  if (p.tumour) {
+    tumour_panel_->add_problem(*p.tumour, p.field, text);
+  } else if (p.field == ProblemField::Body) {
+    preset_panel_->set_problem(text);
+  } else if (p.field == ProblemField::Title) {
+    title_->setStyleSheet("background: #ffc8c8;");
+    title_->setToolTip(text);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "palpa/io/json_text.hpp"
+#include "palpa/mat/mat_body.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/render/surface_pick.hpp"
 
@@ -500,6 +501,46 @@ std::optional<scripted::Placement> CaseDraft::placement(std::size_t k) const {
       return std::nullopt;
     }
     *range = {p[key][0].get<double>(), p[key][1].get<double>()};
+  }
+  return out;
+}
+
+std::vector<std::optional<std::array<double, 2>>> CaseDraft::random_depth_ranges() const {
+  std::vector<std::optional<std::array<double, 2>>> out(tumour_count());
+  std::vector<std::size_t> ruled;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (placement(k) && tumour(k)) ruled.push_back(k);
+  }
+  if (ruled.empty()) return out;
+  auto file = parsed();
+  if (!file) return out;
+  file->tumours.clear();
+  std::optional<scene::Scene> scene;
+  try {
+    scene.emplace(scene::Scene::build(*file, source()));
+  } catch (const std::exception&) {
+    return out;
+  }
+  constexpr int kSamples = 9;
+  for (const std::size_t k : ruled) {
+    const auto rule = *placement(k);
+    const std::string body = tumour(k)->body;
+    for (std::size_t b = 0; b < scene->size(); ++b) {
+      if (scene->body(b).body.id() != body) continue;
+      double thin = std::numeric_limits<double>::infinity(), thick = 0.0;
+      for (int i = 0; i < kSamples; ++i) {
+        for (int j = 0; j < kSamples; ++j) {
+          const double u = rule.u[0] + (rule.u[1] - rule.u[0]) * i / (kSamples - 1);
+          const double v = rule.v[0] + (rule.v[1] - rule.v[0]) * j / (kSamples - 1);
+          double s[mat::kRadius + 1];
+          scene->body(b).body.skeleton().evaluate(u, v, s, mat::kRadius + 1);
+          const double thickness = 2.0 * std::max(0.0, s[mat::kRadius]);  // as placement: 2R
+          thin = std::min(thin, thickness);
+          thick = std::max(thick, thickness);
+        }
+      }
+      out[k] = std::array<double, 2>{rule.depth[0] * thin, rule.depth[1] * thick};
+    }
   }
   return out;
 }

@@ -46,7 +46,9 @@ bool describe_outside(const std::string& reason, AuthorProblem& out) {
     out.text = fmt::format("{}, radius: {} mm reaches {} mm beyond the skin", row, shown(radius), shown(by));
   } else {
     out.field = ProblemField::Depth;
-    out.text = fmt::format("{}, depth: its centre is {} mm outside the body (above the skin)", row, shown(by));
+    // The centre itself is out (above the skin, or below the base): the depth is at fault.
+    out.text = fmt::format("{}, depth: its centre is outside the body (the tumour reaches {} mm beyond the surface)",
+                           row, shown(by));
   }
   return true;
 }

@@ -542,3 +542,49 @@ TEST(AuthorDraft, FailedEditsLeaveNoUndoStep) {
 
 }  // namespace
 }  // namespace palpa::author
+
+namespace palpa::author {
+namespace {
+
+// The depth range a randomized tumour can take: on the 30 mm slab a 40-50 % rule is
+// 12-15 mm; on the breast (a dome) the centres scripted::place_tumours draws for many
+// seeds all lie within the range given, and fill most of it.
+TEST(AuthorDraft, RandomDepthRangeIsWhereSeededPlacementPutsTheCentre) {
+  CaseDraft slab(preset_defaults(Preset::Slab));
+  slab.add_tumour(pick_top(slab, 0.0, 0.0), {0.012, 0.004, 2000.0});
+  EXPECT_FALSE(slab.random_depth_ranges()[0].has_value());
+  slab.set_placement(0, scripted::Placement{{0.3, 0.7}, {0.3, 0.7}, {0.4, 0.5}});
+  const auto flat = slab.random_depth_ranges()[0];
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_NEAR((*flat)[0], 0.012, 2e-4);
+  EXPECT_NEAR((*flat)[1], 0.015, 2e-4);
+
+  CaseDraft breast(preset_defaults_in_kpa(Preset::Breast));
+  breast.add_tumour(pick_top(breast, 0.0, 0.0), {0.012, 0.005, 0.0, 19440.0, 0.0});
+  breast.set_placement(0, scripted::Placement{{0.3, 0.7}, {0.3, 0.7}, {0.4, 0.5}});
+  const auto range = breast.random_depth_ranges()[0];
+  ASSERT_TRUE(range.has_value());
+  const auto file = breast.valid_case();
+  io::CaseFile bodies = file;
+  bodies.tumours.clear();
+  const auto scene = scene::Scene::build(bodies, "breast");
+  const render::TopContourPicker picker(scene);
+  double lo = 1.0, hi = 0.0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    const auto placed = scripted::place_tumours(file, seed, "breast").tumours[0];
+    // The depth below the skin straight above (the dome is nearly level where the rule puts it).
+    const palpa::Vec3 c(placed.center[0], placed.center[1], placed.center[2]);
+    const auto hit = picker.pick(c + palpa::Vec3(0, 0, 1.0), palpa::Vec3(0, 0, -1));
+    ASSERT_TRUE(hit.has_value());
+    const double depth = (hit->point - c).norm();
+    lo = std::min(lo, depth);
+    hi = std::max(hi, depth);
+  }
+  EXPECT_GE(lo, (*range)[0] - 0.5e-3) << lo << " " << (*range)[0];
+  EXPECT_LE(hi, (*range)[1] + 0.5e-3) << hi << " " << (*range)[1];
+  EXPECT_LT(lo, (*range)[0] + 0.3 * ((*range)[1] - (*range)[0]));
+  EXPECT_GT(hi, (*range)[1] - 0.3 * ((*range)[1] - (*range)[0]));
+}
+
+}  // namespace
+}  // namespace palpa::author

@@ -20,7 +20,7 @@ TEST(AuthorProblemText, ATumourReachingBeyondTheSkinIsItsRadiusInMm) {
   const auto above = describe(io::Problem{"/tumors/0", "tumour (radius 0.004 m) is not inside body \"slab\": its centre "
                                                        "is 0.0032 m outside the surface"});
   EXPECT_EQ(above.field, ProblemField::Depth);
-  EXPECT_EQ(above.text, "Tumour 1, depth: its centre is 3.2 mm outside the body (above the skin)");
+  EXPECT_EQ(above.text, "Tumour 1, depth: its centre is outside the body (the tumour reaches 3.2 mm beyond the surface)");
 }
 
 TEST(AuthorProblemText, RangesAndModuliInTheWindowsUnits) {

@@ -127,6 +127,11 @@ class CaseDraft {
   /// depth (distance from the anchor), radius and stiffness or modulus of tumour k.
   std::optional<TumourSpec> spec(std::size_t k) const;
   std::optional<scripted::Placement> placement(std::size_t k) const;
+  /// For each tumour, the depths below the skin (m, of its centre) its randomization rule
+  /// can give it: the rule's depth shares of the local thickness over its (u, v) rectangle
+  /// (sampled on a 9 x 9 grid), as scripted::place_tumours draws them; nothing for a tumour
+  /// without a rule, or when the bodies cannot be fitted.
+  std::vector<std::optional<std::array<double, 2>>> random_depth_ranges() const;
 
   // --- Undo ---
   bool can_undo() const { return !undo_.empty(); }
