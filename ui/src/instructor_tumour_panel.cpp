@@ -55,7 +55,8 @@ QString material_text(const mat::Tumour& t) {
 
 }  // namespace
 
-InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tumours"), parent) {
+// Untitled: its tab says "Tumours" (the room goes to the table).
+InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(parent) {
   auto* layout = new QVBoxLayout(this);
   auto* help = new QLabel(tr("Click the body to place a tumour (Shift+click moves the selected one)."), this);
   help->setWordWrap(true);
@@ -81,7 +82,7 @@ void InstructorTumourPanel::build_table(QVBoxLayout* layout) {
   // its tooltip has the whole).
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::Stretch);
-  table_->setMinimumHeight(110);
+  table_->setMinimumHeight(100);
   layout->addWidget(table_, 1);
 
 }

@@ -90,6 +90,25 @@ std::string without_key(const std::string& where, const std::string& reason) {
   return reason;
 }
 
+// A number as a percentage ("0.55" -> "55").
+std::string percent(const std::string& share) { return shown(std::stod(share) * 100.0); }
+
+// A scoring problem's reason in the window's words: shares in %, the keys by their labels.
+std::string scoring_words(const std::string& key, std::string reason) {
+  static const std::regex kBare(R"(^([-+0-9.eE]+) is outside (.*\] (m|Pa))$)");
+  static const std::regex kShare(R"(^([-+0-9.eE]+) is outside \[0, 1\]$)");
+  static const std::regex kBands(R"(^light_max ([-+0-9.eE]+) must be below deep_min ([-+0-9.eE]+)(.*)$)");
+  const bool in_percent = key == "min_coverage" || key == "min_deep_coverage" || key == "light_max" || key == "deep_min";
+  std::smatch m;
+  if (in_percent && std::regex_match(reason, m, kShare)) return percent(m[1].str()) + " % is outside [0, 100] %";
+  if (std::regex_match(reason, m, kBands)) {
+    return "light pressure up to " + percent(m[1].str()) + " % must be below deep pressure from " +
+           percent(m[2].str()) + " %" + m[3].str();
+  }
+  // "2 is outside (0, 1] m": the value is in the range's unit too.
+  return std::regex_replace(reason, kBare, "$1 $3 is outside $2");
+}
+
 }  // namespace
 
 std::string si_to_instructor_units(const std::string& text) {
@@ -150,11 +169,7 @@ AuthorProblem describe(const io::Problem& problem) {
     label = "Exam region";
   }
   std::string reason = out.field == ProblemField::Scoring ? without_key(w, problem.reason) : problem.reason;
-  if (out.field == ProblemField::Scoring) {
-    // "2 is outside (0, 1] m": the value is in the range's unit too.
-    static const std::regex kBare(R"(^([-+0-9.eE]+) is outside (.*\] (m|Pa))$)");
-    reason = std::regex_replace(reason, kBare, "$1 $3 is outside $2");
-  }
+  if (out.field == ProblemField::Scoring) reason = scoring_words(out.key, reason);
   reason = si_to_instructor_units(reason);
   out.text = label.empty() ? capitalized(reason) : label + ": " + reason;
   return out;

@@ -588,3 +588,48 @@ TEST(AuthorDraft, RandomDepthRangeIsWhereSeededPlacementPutsTheCentre) {
 
 }  // namespace
 }  // namespace palpa::author
+
+namespace palpa::author {
+namespace {
+
+// The exam settings the window edits: a description, scoring keys in SI and one rectangle
+// of every body, each an undo step, read back by palpa-cli's own reader (thresholds).
+TEST(AuthorDraft, ExamSettingsAreWrittenWhereTheFormatSaysAndUndone) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  EXPECT_EQ(draft.exam_region_kind(), CaseDraft::RegionKind::Whole);
+  draft.set_description("A slab with nothing in it.");
+  draft.set_scoring("hit_margin", 0.008);
+  draft.set_exam_region(ExamExtent{{0.1, 0.6}, {0.2, 0.8}});
+  const auto& doc = draft.document();
+  EXPECT_EQ(doc["description"], "A slab with nothing in it.");
+  EXPECT_EQ(doc["scoring"]["hit_margin"], 0.008);
+  EXPECT_EQ(doc["exam_region"], nlohmann::json::parse(R"([{"body": "slab", "u": [0.1, 0.6], "v": [0.2, 0.8]}])"));
+  EXPECT_EQ(draft.exam_region_kind(), CaseDraft::RegionKind::Extent);
+  EXPECT_EQ(draft.exam_extent(), (ExamExtent{{0.1, 0.6}, {0.2, 0.8}}));
+  std::vector<io::Problem> problems;
+  const auto t = io::thresholds_from_case(draft.valid_case().document, problems);
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(t.hit_margin, 0.008);
+  EXPECT_EQ(draft.thresholds().hit_margin, 0.008);
+  ASSERT_EQ(t.exam_region.size(), 1u);
+  EXPECT_EQ(t.exam_region[0].u0, 0.1);
+  // Two rectangles on one body: not what the window edits, kept as written.
+  nlohmann::json two = draft.document();
+  two["exam_region"].push_back({{"body", "slab"}, {"u", {0.7, 0.9}}});
+  EXPECT_EQ(CaseDraft::from_document(two, "two").exam_region_kind(), CaseDraft::RegionKind::Custom);
+  draft.undo();
+  EXPECT_FALSE(draft.document().contains("exam_region"));
+  draft.set_scoring("hit_margin", std::nullopt);
+  EXPECT_FALSE(draft.document().contains("scoring"));
+  draft.set_description("");
+  EXPECT_FALSE(draft.document().contains("description"));
+  // A description must be a string: the reader says so at its pointer.
+  nlohmann::json bad = draft.document();
+  bad["description"] = 3;
+  const auto found = CaseDraft::from_document(bad, "bad").validate();
+  ASSERT_FALSE(found.empty());
+  EXPECT_EQ(found.front().where, "/description");
+}
+
+}  // namespace
+}  // namespace palpa::author

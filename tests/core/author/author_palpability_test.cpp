@@ -134,6 +134,20 @@ TEST(AuthorPalpability, OneTumourAtATimeTheCheckAgreesWithTheScriptedExpert) {
   }
 }
 
+// The bundled difficulty ladder: the check and the scripted expert agree on every rung
+// (rungs 1 and 2 found, 3 and 4 missed: BENCHMARKS.md, "The difficulty ladder in kPa").
+TEST(AuthorPalpability, TheLadderRungsTheExpertFindsAreThePalpableOnes) {
+  for (int rung = 1; rung <= 4; ++rung) {
+    const auto file = io::load_case(std::string(PALPA_SOURCE_DIR) + "/data/cases/ladder-" + std::to_string(rung) + ".json");
+    const auto checked = check_palpability(file, "ladder");
+    const auto found = found_by_expert(file);
+    ASSERT_EQ(checked.size(), 1u);
+    std::printf("ladder-%d: contrast %.3f, expert %s\n", rung, checked[0].contrast, found[0] ? "found" : "missed");
+    EXPECT_EQ(checked[0].palpable, found[0]) << "rung " << rung << ": contrast " << checked[0].contrast;
+    EXPECT_EQ(found[0], rung <= 2) << "rung " << rung;
+  }
+}
+
 // A tumour no stiffer than the tissue around it raises nothing; a case without tumours has
 // nothing to check.
 TEST(AuthorPalpability, ATumourLikeItsTissueHasNoContrast) {

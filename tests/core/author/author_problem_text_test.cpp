@@ -36,6 +36,12 @@ TEST(AuthorProblemText, RangesAndModuliInTheWindowsUnits) {
   EXPECT_EQ(margin.field, ProblemField::Scoring);
   EXPECT_EQ(margin.key, "hit_margin");
   EXPECT_EQ(margin.text, "Scoring, hit margin: 2000 mm is outside (0, 1000] mm");
+  EXPECT_EQ(describe(io::Problem{"/scoring/min_coverage", "min_coverage 1.5 is outside [0, 1]"}).text,
+            "Scoring, minimum coverage: 150 % is outside [0, 100] %");
+  EXPECT_EQ(describe(io::Problem{"/scoring/deep_min", "light_max 0.6 must be below deep_min 0.55 (light < medium < "
+                                                      "deep pressure)"}).text,
+            "Scoring, deep pressure from: light pressure up to 60 % must be below deep pressure from 55 % (light < "
+            "medium < deep pressure)");
   EXPECT_EQ(si_to_instructor_units("a body 0.0125 m thick of 3250 Pa"), "a body 12.5 mm thick of 3.25 kPa");
 }
 

@@ -27,11 +27,13 @@ class QAction;
 class QLabel;
 class QLineEdit;
 class QListWidget;
+class QTabWidget;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
 
 namespace palpa::ui {
 
+class InstructorExamPanel;
 class InstructorPresetPanel;
 class InstructorScene;
 class InstructorTumourPanel;
@@ -48,6 +50,9 @@ class InstructorWindow : public QMainWindow {
   VtkView* view() const { return view_; }
   InstructorPresetPanel* preset_panel() const { return preset_panel_; }
   InstructorTumourPanel* tumour_panel() const { return tumour_panel_; }
+  InstructorExamPanel* exam_panel() const { return exam_panel_; }
+  /// The side panel's tabs: Body, Tumours, Exam (description, scoring, exam region).
+  QTabWidget* side_tabs() const { return tabs_; }
   /// The validation problems and warnings, one item each, in mm and kPa with the tumour's
   /// row ("Tumour 2, radius: ..."); the item's Qt::UserRole holds the JSON pointer.
   QListWidget* problems() const { return problems_; }
@@ -112,6 +117,9 @@ class InstructorWindow : public QMainWindow {
 
  private:
   void build_view();
+  /// The side panel: the title over the Body, Tumours and Exam tabs, in a scroll area.
+  QWidget* build_side(QWidget* parent);
+  void connect_panels();
   void build_actions();
   /// Runs an edit of the draft; errors become a message. Then refresh().
   void edit(const std::function<void()>& op);
@@ -142,6 +150,8 @@ class InstructorWindow : public QMainWindow {
   VtkView* view_ = nullptr;
   InstructorPresetPanel* preset_panel_ = nullptr;
   InstructorTumourPanel* tumour_panel_ = nullptr;
+  InstructorExamPanel* exam_panel_ = nullptr;
+  QTabWidget* tabs_ = nullptr;
   QListWidget* problems_ = nullptr;
   QLineEdit* title_ = nullptr;
   QAction* undo_ = nullptr;
