@@ -14,7 +14,8 @@ namespace palpa::author {
 
 /// The contrast the scripted expert needs to find a tumour, measured by running it over
 /// the whole breast (tissue in Pa and in N/m) on one tumour at a time: it missed every tumour
-/// up to 1.24 (2 of 3 between 1.22 and 1.24) and found every one from 1.25 on. Its own
+/// up to 1.212 and found every one from 1.25 on; in between it found 3 of 5 (BENCHMARKS.md).
+/// Warning below 1.25, no tumour it missed goes without a warning. Its own
 /// thresholds compare a spot with its neighbourhood's median (suspicion at 1.2 in Pa, 1.3
 /// in N/m), which the tumour lifts too, so it needs more than they say over plain tissue.
 /// (kFeltSpotRatio, 1.15, is what a search press may have felt, not what it finds.)
