@@ -86,18 +86,24 @@ void AppWindows::fail(const QString& line, QWidget* parent) {
   }
 }
 
-void AppWindows::adopt(QMainWindow& window) {
-  window.setAttribute(Qt::WA_DeleteOnClose);
+void AppWindows::add_menus(QMainWindow& window) {
   auto* menu = new ui::ModeMenu(window);
   connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
   connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
   add_device_menu(window);
+}
+
+void AppWindows::adopt(QMainWindow& window) {
+  window.setAttribute(Qt::WA_DeleteOnClose);
+  add_menus(window);
   if (auto* trainee = qobject_cast<ui::TraineeWindow*>(&window)) upload_when_finished(*trainee);
-  // The instructor's Try it palpates with the device chosen here, like any exercise.
+  // The instructor's Try it palpates with the device chosen here, like any exercise, in a
+  // window with the same menus (its session is a test-run: not uploaded).
   if (auto* instructor = qobject_cast<ui::InstructorWindow*>(&window)) {
     instructor->set_device_opener(
         [this, instructor] { return open_chosen_device_with_progress(settings_.device, instructor); });
+    instructor->set_try_window_adopter([this](QMainWindow& tried) { add_menus(tried); });
   }
 }
 
@@ -195,7 +201,7 @@ QMainWindow* AppWindows::open_instructor(const QString& case_path, QWidget* pare
     // cannot be read or is not JSON is refused.
     auto draft = case_path.isEmpty() ? author::CaseDraft() : author::CaseDraft::load(case_path.toStdString());
     auto* window = new ui::InstructorWindow(std::move(draft));
-    window->set_sessions_dir(default_session_path().parent_path());
+    window->set_sessions_dir(ui::try_it_sessions_dir());  // apart from the trainees' sessions
     adopt(*window);
     window->show();
     return window;

@@ -63,6 +63,8 @@ class AppWindows : public QObject {
 
  private:
   void fail(const QString& line, QWidget* parent);
+  /// The menus every window has: File (ui::ModeMenu, wired here) and Device.
+  void add_menus(QMainWindow& window);
   /// The Device menu: what is attached now (listed again each time it opens: hot-plug).
   void add_device_menu(QMainWindow& window);
   /// After an exercise: the session to the centre store and its statement to the LRS, off

@@ -165,9 +165,20 @@ class AppWindowsTest : public QObject {
     QCOMPARE(open_windows<palpa::ui::TraineeWindow>(), 0);
     // The mouse: Try it opens an exercise on the edited case.
     app.choose_device("virtual");
+    const QString trainees = sessions_.path() + "/palpa/sessions";
+    const auto before = QDir(trainees).entryList({"*.palpa"}, QDir::Files).size();
     auto* trainee = window->try_it();
     QVERIFY(trainee);
     QCOMPARE(trainee->exercise().device_name(), std::string("virtual (mouse)"));
+    // The Try-it window has the menus of a trainee window (File, Device) ...
+    QStringList menus;
+    for (auto* action : trainee->menuBar()->actions()) menus << action->text();
+    QCOMPARE(menus, QStringList({"&File", "&Device"}));
+    QVERIFY(trainee->findChild<palpa::ui::ModeMenu*>());
+    // ... and records into its own folder, not the trainees' sessions folder.
+    QCOMPARE(QString::fromStdString(trainee->exercise().session_path().parent_path().string()), trainees + "/try-it");
+    QVERIFY(QFile::exists(QString::fromStdString(trainee->exercise().session_path().string())));
+    QCOMPARE(QDir(trainees).entryList({"*.palpa"}, QDir::Files).size(), before);
   }
 
   // A station with a centre store that is down and an LRS that is up: finishing the exercise

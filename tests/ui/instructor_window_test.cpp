@@ -13,20 +13,31 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QImage>
+#include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMessageBox>
 #include <QProcess>
+#include <QRegularExpression>
 #include <QPushButton>
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QSurfaceFormat>
+#include <QTabBar>
+#include <QTabWidget>
 #include <QTableWidget>
+#include <QPlainTextEdit>
+#include <QHeaderView>
+#include <QFontMetrics>
+#include <QStyle>
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
 #include <QtTest>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -39,7 +50,9 @@
 #include "palpa/mat/tissue_materials.hpp"
 #include "palpa/engine/device.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/io/thresholds.hpp"
 #include "palpa/session/session_reader.hpp"
+#include "palpa/ui/instructor_exam_panel.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_scene.hpp"
 #include "palpa/ui/instructor_tumour_panel.hpp"
@@ -85,12 +98,30 @@ void show(InstructorWindow& window) {
   QTest::qWait(50);
 }
 
+// A problem (not a warning) about this JSON pointer is listed.
 bool has_problem(const InstructorWindow& window, const QString& where) {
   for (int k = 0; k < window.problems()->count(); ++k) {
-    if (window.problems()->item(k)->text().startsWith(where + ": ")) return true;
+    const auto* item = window.problems()->item(k);
+    if (item->data(Qt::UserRole).toString() == where && !item->data(InstructorWindow::kWarningRole).toBool()) return true;
   }
   return false;
 }
+
+// The listed texts, problems and warnings.
+QStringList problem_texts(const InstructorWindow& window) {
+  QStringList out;
+  for (int k = 0; k < window.problems()->count(); ++k) out << window.problems()->item(k)->text();
+  return out;
+}
+
+// "12.0-15.0" within 0.15 mm of lo-hi.
+bool near_range(const QString& text, double lo, double hi) {
+  const QStringList ends = text.split('-');
+  return ends.size() == 2 && std::abs(ends[0].toDouble() - lo) < 0.15 && std::abs(ends[1].toDouble() - hi) < 0.15;
+}
+
+// Whether a spin box is marked as holding a problem.
+bool marked(const QWidget* box) { return box->styleSheet().contains("#ffc8c8"); }
 
 /// A 64 x 32 grayscale ramp, black at the left to white at the right.
 QImage ramp_along_x() {
@@ -104,8 +135,23 @@ QImage ramp_along_x() {
   return ramp;
 }
 
-// Types `text` into a spin box as a person does: focus, select all, type, Return.
+// Brings the side panel's tab holding `w` to the front as a person does: a click on its tab.
+void show_tab_of(QWidget* w) {
+  for (QWidget* p = w; p; p = p->parentWidget()) {
+    auto* tabs = qobject_cast<QTabWidget*>(p);
+    if (!tabs) continue;
+    for (int i = 0; i < tabs->count(); ++i) {
+      if (tabs->widget(i) == w || tabs->widget(i)->isAncestorOf(w)) {
+        if (tabs->currentIndex() != i) QTest::mouseClick(tabs->tabBar(), Qt::LeftButton, Qt::NoModifier, tabs->tabBar()->tabRect(i).center());
+        return;
+      }
+    }
+  }
+}
+
+// Types `text` into a spin box as a person does: its tab, focus, select all, type, Return.
 void type_into(QAbstractSpinBox* box, const QString& text) {
+  show_tab_of(box);
   box->setFocus();
   QTest::keyClick(box, Qt::Key_A, Qt::ControlModifier);
   QTest::keyClicks(box, text);
@@ -268,7 +314,7 @@ class InstructorWindowTest : public QObject {
     window.tumour_panel()->stiffness_box()->setValue(1500.0);
     QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
     window.tumour_panel()->randomize_box()->setChecked(true);
-    window.tumour_panel()->rule_box(4)->setValue(0.45);  // depth fraction from 0.45
+    window.tumour_panel()->rule_box(4)->setValue(45.0);  // random depth from 45 % of the thickness
     QVERIFY(window.draft().placement(0).has_value());
     QCOMPARE(window.draft().placement(0)->depth[0], 0.45);
     const QString path = dir.filePath("prostate.json");
@@ -305,8 +351,10 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(cell->background().color(), QColor(255, 200, 200));
     QVERIFY(window.tumour_panel()->table()->item(0, 0)->background().style() == Qt::NoBrush);
     // Choosing the problem selects the tumour, whose radius box is then marked too.
+    QVERIFY2(problem_texts(window).contains("Tumour 1, radius: 0 mm is outside (0, 1000] mm"),
+             qPrintable(problem_texts(window).join("\n")));
     for (int k = 0; k < window.problems()->count(); ++k) {
-      if (window.problems()->item(k)->text().startsWith("/tumors/0/radius")) window.problems()->setCurrentRow(k);
+      if (window.problems()->item(k)->data(Qt::UserRole).toString() == "/tumors/0/radius") window.problems()->setCurrentRow(k);
     }
     QCOMPARE(window.tumour_panel()->selected(), std::optional<std::size_t>(0));
     QVERIFY(!window.tumour_panel()->radius_box()->styleSheet().isEmpty());
@@ -334,6 +382,223 @@ class InstructorWindowTest : public QObject {
     QVERIFY(!has_problem(window, "/title"));
     QVERIFY(window.title_edit()->toolTip().isEmpty());
     QVERIFY(window.title_edit()->styleSheet().isEmpty());
+  }
+
+  // Bad values typed into the selected tumour's boxes: the problem names the table's row
+  // and the field in mm, and exactly that field's box is marked. On the 30 mm slab (top at
+  // z = 30 mm, base at 0) a 20 mm radius 12 mm deep reaches 20 - 12 = 8 mm above the top;
+  // 40 mm deep puts the centre 10 mm under the base, the 4 mm tumour 14 mm beyond it.
+  void typedBadValuesNameTheRowAndMarkTheirBox() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    auto* panel = window.tumour_panel();
+    type_into(panel->depth_box(), "12");
+    type_into(panel->radius_box(), "4");
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(-0.03, 0.0, 0.03))));
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
+    QCOMPARE(panel->selected(), std::optional<std::size_t>(1));
+    QVERIFY(window.draft().validate().empty());
+
+    type_into(panel->radius_box(), "20");
+    QCOMPARE(window.draft().tumour(1)->radius, 0.020);
+    QCOMPARE(window.problems()->count(), 1);
+    const QString text = window.problems()->item(0)->text();
+    const QRegularExpression reach("^Tumour 2, radius: 20 mm reaches ([0-9.]+) mm beyond the skin$");
+    const auto m = reach.match(text);
+    QVERIFY2(m.hasMatch(), qPrintable(text));
+    QVERIFY2(std::abs(m.captured(1).toDouble() - 8.0) < 0.05, qPrintable(text));
+    QVERIFY(marked(panel->radius_box()));
+    QVERIFY(!marked(panel->depth_box()));
+    QVERIFY(!marked(panel->stiffness_box()));
+    QCOMPARE(panel->table()->item(1, 1)->background().color(), QColor(255, 200, 200));
+    QVERIFY(panel->table()->item(1, 0)->background().style() == Qt::NoBrush);
+    QVERIFY(panel->table()->item(0, 1)->background().style() == Qt::NoBrush);  // row 1 is fine
+
+    type_into(panel->radius_box(), "4");
+    QVERIFY(window.draft().validate().empty());
+    type_into(panel->depth_box(), "40");
+    QCOMPARE(window.problems()->count(), 1);
+    const QString deep = window.problems()->item(0)->text();
+    const QRegularExpression outside(
+        "^Tumour 2, depth: its centre is outside the body \\(the tumour reaches ([0-9.]+) mm beyond the surface\\)$");
+    const auto d = outside.match(deep);
+    QVERIFY2(d.hasMatch(), qPrintable(deep));
+    // The centre is 10 mm under the base, the sphere's far side 14 mm.
+    QVERIFY2(d.captured(1).toDouble() >= 9.95 && d.captured(1).toDouble() <= 14.05, qPrintable(deep));
+    QVERIFY(marked(panel->depth_box()));
+    QVERIFY(!marked(panel->radius_box()));
+    for (const QString& t : problem_texts(window)) QVERIFY2(!t.contains("/tumors") && !t.contains(" m "), qPrintable(t));
+  }
+
+  // Two depths, two names: "Depth below skin" (mm) and "Random depth" (% of the thickness,
+  // with the mm it gives here). On the 30 mm slab a 40-50 % rule is 12-15 mm, and the table
+  // shows that range for the randomized tumour, not the depth it was placed at.
+  void randomDepthIsNamedApartAndShownInMm() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    show(window);
+    auto* panel = window.tumour_panel();
+    QStringList labels;
+    for (auto* l : panel->findChildren<QLabel*>()) labels << l->text();
+    QVERIFY2(labels.contains("Depth below skin") && labels.contains("Random depth") && !labels.contains("Depth"),
+             qPrintable(labels.join("|")));
+    type_into(panel->depth_box(), "8");
+    QVERIFY(window.click_at(window.to_view(palpa::Vec3(0.0, 0.0, 0.03))));
+    QCOMPARE(panel->table()->item(0, 0)->text(), QString("8.00"));
+    panel->randomize_box()->click();
+    QVERIFY(window.draft().placement(0).has_value());
+    QCOMPARE(window.draft().placement(0)->depth, (std::array<double, 2>{0.4, 0.5}));
+    // The fitted slab is 30 mm thick to within 0.3 mm.
+    QVERIFY2(near_range(panel->table()->item(0, 0)->text(), 12.0, 15.0), qPrintable(panel->table()->item(0, 0)->text()));
+    const QString note = panel->random_depth_label()->text();
+    QVERIFY2(note.startsWith("Random depth: 40-50 % of the thickness (") && note.endsWith(" mm here)"), qPrintable(note));
+    QVERIFY2(near_range(note.section('(', 1).section(' ', 0, 0), 12.0, 15.0), qPrintable(note));
+    QVERIFY(!panel->depth_box()->isEnabled());
+    type_into(panel->rule_box(5), "60");
+    QCOMPARE(window.draft().placement(0)->depth[1], 0.6);
+    QVERIFY2(near_range(panel->table()->item(0, 0)->text(), 12.0, 18.0), qPrintable(panel->table()->item(0, 0)->text()));
+    panel->randomize_box()->click();  // off: the depth it is written at again
+    QVERIFY(!window.draft().placement(0).has_value());
+    QCOMPARE(panel->table()->item(0, 0)->text(), QString("8.00"));
+    QVERIFY(panel->depth_box()->isEnabled());
+  }
+
+  // A fibroadenoma at its 6.48 kPa, placed 10 mm deep with a 5 mm radius (the panel's
+  // defaults) on the breast of 3.25 kPa fat, raises the force at deep pressure by a few per
+  // cent: the case is valid (it saves) and a warning gives the number. The scripted expert
+  // misses that tumour (core.AuthorPalpability runs it); at 9 mm it finds it, and the
+  // warning goes.
+  void aTumourLikelyNotPalpableIsWarnedWithItsNumber() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    show(window);
+    auto* tissue = window.tumour_panel()->material_box();
+    show_tab_of(tissue);
+    tissue->setFocus();
+    QTest::keyClick(tissue, Qt::Key_Up);  // from the carcinoma to the fibroadenoma
+    QCOMPARE(tissue->currentData().toString(), QString("fibroadenoma"));
+    const auto top = window.scene().pick(palpa::Vec3(0.03, 0.0, 1.0), palpa::Vec3(0.0, 0.0, -1.0));
+    QVERIFY(top.has_value());
+    QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, window.to_view(top->point));
+    QCOMPARE(window.draft().tumour_count(), std::size_t{1});
+    QCOMPARE(window.draft().tumour(0)->modulus, 6480.0);
+    QVERIFY(window.draft().validate().empty());
+    const QStringList texts = problem_texts(window);
+    QCOMPARE(texts.size(), 2);
+    QCOMPARE(texts[0], QString("No problems: the case is valid (1 warning(s) below)."));
+    const QRegularExpression warning(
+        "^Tumour 1 may not be palpable: at deep pressure it raises the force by ([0-9]+) % \\(the scripted expert "
+        "needs about 25 %\\)$");
+    const auto m = warning.match(texts[1]);
+    QVERIFY2(m.hasMatch(), qPrintable(texts[1]));
+    QVERIFY2(m.captured(1).toInt() < 25, qPrintable(texts[1]));
+    QVERIFY(window.problems()->item(1)->data(InstructorWindow::kWarningRole).toBool());
+    QVERIFY(!has_problem(window, "/tumors/0"));
+    QCOMPARE(window.tumour_panel()->table()->item(0, 2)->background().color(), QColor(255, 240, 190));
+    QVERIFY2(window.save_as(dir.filePath("warned.json")), qPrintable(window.message()));  // valid all the same
+
+    type_into(window.tumour_panel()->radius_box(), "9");
+    QCOMPARE(window.draft().tumour(0)->radius, 0.009);
+    QCOMPARE(problem_texts(window), QStringList{"No problems: the case is valid."});
+  }
+
+  // The description, the scoring thresholds in %, N, mm and s, and the exam region (part of
+  // the body, in % along x and y) typed in, saved, and read back: the file holds them in SI
+  // under "description", "scoring" and "exam_region" (docs/case-format.md), palpa-cli's
+  // reader takes them, and another window shows the same.
+  void examSettingsAreTypedSavedAndReloaded() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    show(window);
+    QApplication::setActiveWindow(&window);  // focus moves as on a desktop (Xvfb has no window manager)
+    auto* exam = window.exam_panel();
+    show_tab_of(exam->description_edit());
+    exam->description_edit()->setFocus();
+    QTest::keyClicks(exam->description_edit(), "Two lumps, one benign.");
+    const std::pair<const char*, const char*> typed[] = {{"min_coverage", "85"}, {"min_deep_coverage", "70"},
+                                                         {"max_force", "12.5"},  {"hit_margin", "8"},
+                                                         {"light_max", "25"},    {"deep_min", "55"},
+                                                         {"min_duration", "90"}};
+    for (const auto& [key, text] : typed) type_into(exam->scoring_box(key), text);
+    QCOMPARE(window.draft().description(), std::string("Two lumps, one benign."));  // committed on leaving it
+    auto* region = exam->region_box();
+    QCOMPARE(region->currentText(), QString("Whole surface"));
+    QVERIFY(!exam->extent_box(0)->isEnabled());
+    region->setFocus();
+    QTest::keyClick(region, Qt::Key_Down);
+    QCOMPARE(region->currentText(), QString("Part of the body"));
+    const char* extents[] = {"10", "60", "20", "80"};
+    for (int c = 0; c < 4; ++c) type_into(exam->extent_box(c), extents[c]);
+
+    const QString path = dir.filePath("exam.json");
+    QVERIFY2(window.save_as(path), qPrintable(window.message()));
+    const auto doc = nlohmann::json::parse(read_text(path));
+    QCOMPARE(doc["description"], nlohmann::json("Two lumps, one benign."));
+    const nlohmann::json expected = {{"min_coverage", 0.85}, {"min_deep_coverage", 0.70}, {"max_force", 12.5},
+                                     {"hit_margin", 0.008},  {"light_max", 0.25},         {"deep_min", 0.55},
+                                     {"min_duration", 90.0}};
+    for (const auto& [key, value] : expected.items()) {
+      QVERIFY2(doc["scoring"].contains(key), key.c_str());
+      QVERIFY2(std::abs(doc["scoring"][key].get<double>() - value.get<double>()) < 1e-12,
+               qPrintable(QString::fromStdString(key + ": " + doc["scoring"][key].dump())));
+    }
+    QCOMPARE(doc["exam_region"], nlohmann::json::parse(R"([{"body": "breast", "u": [0.1, 0.6], "v": [0.2, 0.8]}])"));
+    std::vector<palpa::io::Problem> problems;
+    const auto t = palpa::io::thresholds_from_case(palpa::io::load_case(path.toStdString()).document, problems);
+    QVERIFY(problems.empty());
+    QCOMPARE(t.hit_margin, 0.008);
+    QCOMPARE(t.exam_region.size(), std::size_t{1});
+
+    InstructorWindow again{palpa::author::CaseDraft()};
+    QVERIFY(again.open_case(path));
+    QCOMPARE(again.draft().document(), window.draft().document());
+    QCOMPARE(again.exam_panel()->description_edit()->toPlainText(), QString("Two lumps, one benign."));
+    QCOMPARE(again.exam_panel()->scoring_box("hit_margin")->value(), 8.0);
+    QCOMPARE(again.exam_panel()->scoring_box("min_coverage")->value(), 85.0);
+    QCOMPARE(again.exam_panel()->region_box()->currentText(), QString("Part of the body"));
+    QCOMPARE(again.exam_panel()->extent_box(3)->value(), 80.0);
+
+    // Bands that overlap: named in the window's words, the box at fault marked, not saved.
+    type_into(exam->scoring_box("light_max"), "60");
+    QVERIFY2(problem_texts(window).contains("Scoring, deep pressure from: light pressure up to 60 % must be below deep "
+                                            "pressure from 55 % (light < medium < deep pressure)"),
+             qPrintable(problem_texts(window).join("\n")));
+    QVERIFY(marked(exam->scoring_box("deep_min")));
+    QVERIFY(!marked(exam->scoring_box("max_force")));
+    QVERIFY(!window.save());
+  }
+
+  // At 1280 x 800 every tab of the side panel fits without scrolling it, and every column
+  // header of the tumour table is wide enough for its text.
+  void everyColumnReadsAt1280x800WithoutScrolling() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    window.resize(1280, 800);
+    show(window);
+    QCOMPARE(window.size(), QSize(1280, 800));
+    const auto top = window.scene().pick(palpa::Vec3(0.0, 0.0, 1.0), palpa::Vec3(0.0, 0.0, -1.0));
+    QVERIFY(top.has_value());
+    QTest::mouseClick(window.view()->input(), Qt::LeftButton, Qt::NoModifier, window.to_view(top->point));
+    window.tumour_panel()->randomize_box()->click();
+    QTest::qWait(50);
+    auto* scroll = window.findChild<QScrollArea*>("sidePanel");
+    QVERIFY(scroll);
+    auto* tabs = window.side_tabs();
+    for (int i = 0; i < tabs->count(); ++i) {
+      QTest::mouseClick(tabs->tabBar(), Qt::LeftButton, Qt::NoModifier, tabs->tabBar()->tabRect(i).center());
+      QCOMPARE(tabs->currentIndex(), i);
+      QTest::qWait(50);
+      QVERIFY2(scroll->verticalScrollBar()->maximum() == 0,
+               qPrintable(QString("%1: %2 px to scroll").arg(tabs->tabText(i)).arg(scroll->verticalScrollBar()->maximum())));
+    }
+    auto* header = window.tumour_panel()->table()->horizontalHeader();
+    const int margin = 2 * header->style()->pixelMetric(QStyle::PM_HeaderMargin, nullptr, header);
+    const QFontMetrics metrics(header->font());
+    for (int c = 0; c < header->count(); ++c) {
+      const QString text = window.tumour_panel()->table()->horizontalHeaderItem(c)->text();
+      const int needs = metrics.horizontalAdvance(text) + margin;
+      QVERIFY2(needs <= header->sectionSize(c),
+               qPrintable(QString("%1 needs %2 px, has %3").arg(text).arg(needs).arg(header->sectionSize(c))));
+    }
+    QCOMPARE(window.tumour_panel()->table()->horizontalHeaderItem(2)->text(), QString("Material"));
   }
 
   // A preset in kPa: the breast of 3.25 kPa fat (Samani 2007), written by its modulus;
@@ -412,7 +677,7 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(panel->stiffness_box()->value(), 3.24);
     QCOMPARE(panel->stiffening_box()->value(), 3.59);
     QCOMPARE(panel->width_box()->value(), 140.0);
-    auto* scroll = qobject_cast<QScrollArea*>(panel->parentWidget()->parentWidget()->parentWidget());
+    auto* scroll = window.findChild<QScrollArea*>("sidePanel");
     QVERIFY(scroll != nullptr);
     const int right = scroll->viewport()->width();
     for (auto* w : scroll->widget()->findChildren<QWidget*>()) {
@@ -442,6 +707,7 @@ class InstructorWindowTest : public QObject {
     QCOMPARE(material->value(), 19.44);
     auto* tissue = window.tumour_panel()->material_box();
     auto* stiffening = window.tumour_panel()->stiffening_box();
+    show_tab_of(tissue);
     QVERIFY(tissue->isVisible() && stiffening->isVisible());
     QCOMPARE(tissue->currentData().toString(), QString("carcinoma"));
     QCOMPARE(stiffening->value(), 11.07);
@@ -480,6 +746,7 @@ class InstructorWindowTest : public QObject {
     const auto range = window.scene().stiffness_range();
     QVERIFY2(std::abs(range[0] - 5.0) < 0.25 && std::abs(range[1] - 5.0) < 0.25,
              qPrintable(QString("%1 %2").arg(range[0]).arg(range[1])));
+    QCOMPARE(window.scene().legend_labels(), std::vector<std::string>{"5 kPa"});  // uniform: its one value
 
     // A ramp along x (the grid rows) from 4 to 24 kPa: skeleton row i gets 4 + 20 i / 10 kPa.
     const QString png = dir.filePath("ramp.png");
@@ -506,6 +773,28 @@ class InstructorWindowTest : public QObject {
     const auto spread = window.scene().stiffness_range();
     QVERIFY2(spread[0] > 3.0 && spread[0] < 5.0 && spread[1] > 23.0 && spread[1] < 25.0,
              qPrintable(QString("%1 %2").arg(spread[0]).arg(spread[1])));
+    const auto labels = window.scene().legend_labels();  // a range now: five ticks from low to high
+    QCOMPARE(labels.size(), std::size_t{5});
+    QCOMPARE(labels.front(), QString::number(spread[0], 'f', 1).toStdString());
+    QCOMPARE(labels.back(), QString::number(spread[1], 'f', 1).toStdString());
+  }
+
+  // The new breast of 3.25 kPa fat is uniform: the overlay's legend reads exactly that. The
+  // map import has one name, in the Case menu and on the Body panel's button.
+  void uniformLegendAndOneImportName() {
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults_in_kpa(Preset::Breast))};
+    show(window);
+    QCOMPARE(window.draft().document()["bodies"][0]["modulus"][0].get<double>(), 3250.0);
+    window.set_stiffness_overlay(true);
+    QCOMPARE(window.scene().legend_labels(), std::vector<std::string>{"3.25 kPa"});
+    QStringList names;
+    for (auto* menu : window.menuBar()->findChildren<QMenu*>()) {
+      for (auto* action : menu->actions()) {
+        if (action->text().contains("map", Qt::CaseInsensitive)) names << action->text().remove('&');
+      }
+    }
+    QCOMPARE(names, QStringList{QString::fromUtf8("Import stiffness map…")});
+    QCOMPARE(window.preset_panel()->import_button()->text(), QString::fromUtf8("Import stiffness map…"));
   }
 
   // A 64 x 32 grayscale ramp, black at the left to white at the right (along x, the grid

@@ -69,7 +69,7 @@ InstructorPresetPanel::InstructorPresetPanel(QWidget* parent) : QGroupBox(tr("Bo
   map_max_->setToolTip(tr("Stiffness of white pixels"));
   form->addRow(tr("Map black"), map_min_);
   form->addRow(tr("Map white"), map_max_);
-  import_ = new QPushButton(tr("Import stiffness map..."), this);
+  import_ = new QPushButton(tr("Import stiffness map…"), this);
   form->addRow(import_);
 
   connect(preset_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
@@ -198,7 +198,8 @@ void InstructorPresetPanel::set_map_in_kpa(bool kpa) {
   map_max_->setValue(kpa ? 30.0 : 600.0);
   map_min_->setToolTip(what + tr(" of black pixels"));
   map_max_->setToolTip(what + tr(" of white pixels"));
-  import_->setText(kpa ? tr("Import modulus map...") : tr("Import stiffness map..."));
+  // One name for the import, as in the Case menu: the map sets the stiffness in either unit
+  // (in kPa it gives the modulus the stiffness comes from).
 }
 
 double InstructorPresetPanel::map_k_min() const { return map_min_->value(); }

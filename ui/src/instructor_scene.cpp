@@ -1,6 +1,7 @@
 #include "palpa/ui/instructor_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <vtkActor.h>
@@ -16,6 +17,9 @@
 #include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
 #include <vtkTextProperty.h>
+#include <vtkVariant.h>
+
+#include <fmt/format.h>
 
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/render/tessellation.hpp"
@@ -185,12 +189,46 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
     }
   }
   if (range_[0] > range_[1]) range_ = {0.0, 1.0};
-  // A uniform body still gets a readable legend.
-  const double hi = range_[1] > range_[0] ? range_[1] : range_[0] + 1.0;
-  lut_->SetTableRange(range_[0], hi);
-  lut_->Build();
+  show_legend_range();
   scene_ = std::move(scene);
   picker_ = std::move(picker);
+}
+
+void InstructorScene::show_legend_range() {
+  // A uniform body (within float round-off) is one value: the legend says exactly that,
+  // not a made-up range of one unit above it.
+  const double lo = range_[0], hi = range_[1];
+  uniform_ = hi - lo <= 1e-4 * std::max(1.0, std::abs(hi));
+  lut_->ResetAnnotations();
+  if (uniform_) {
+    const double value = 0.5 * (lo + hi);
+    range_ = {value, value};
+    lut_->SetTableRange(value, value + std::max(1e-9, 1e-6 * std::abs(value)));  // one colour
+    lut_->SetAnnotation(vtkVariant(value), legend_value(value).c_str());
+  } else {
+    lut_->SetTableRange(lo, hi);
+  }
+  legend_->SetDrawTickLabels(!uniform_);
+  lut_->Build();
+}
+
+std::string InstructorScene::legend_value(double value) const {
+  return fmt::format("{:.4g} {}", value, in_kpa_ ? "kPa" : "N/m");
+}
+
+std::vector<std::string> InstructorScene::legend_labels() const {
+  std::vector<std::string> out;
+  if (uniform_) {
+    out.push_back(lut_->GetAnnotation(0).c_str());
+    return out;
+  }
+  const double* r = lut_->GetRange();
+  const int n = legend_->GetNumberOfLabels();
+  for (int k = 0; k < n; ++k) {
+    const double x = n > 1 ? r[0] + (r[1] - r[0]) * k / (n - 1) : r[0];
+    out.push_back(in_kpa_ ? fmt::format("{:.1f}", x) : fmt::format("{:.0f}", x));  // as the label format
+  }
+  return out;
 }
 
 void InstructorScene::set_tumours(const std::vector<mat::Tumour>& tumours, std::optional<std::size_t> selected) {

@@ -33,12 +33,18 @@ QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int dec
 }
 
 const QColor kProblem(255, 200, 200);
+const QColor kWarning(255, 240, 190);
 
 // A new tumour's material: a ~100 kPa region under a fingertip in N/m (flat-punch estimate,
 // docs/case-authoring.md), or in kPa the invasive ductal carcinoma of the bundled materials
 // (mat/tissue_materials.hpp: Samani's small-strain modulus, Krouskop's stiffening).
 constexpr double kDefaultStiffness = 2000.0;  // N/m
 constexpr const char* kDefaultMaterial = "carcinoma";
+
+// A randomized tumour's depth range (m) as the table and the rule's note show it: "20-25".
+QString depth_range_text(const std::array<double, 2>& range) {
+  return QString("%1-%2").arg(range[0] * 1e3, 0, 'f', 1).arg(range[1] * 1e3, 0, 'f', 1);
+}
 
 QString material_text(const mat::Tumour& t) {
   if (!(t.modulus > 0.0)) return QString::number(t.stiffness, 'f', 0) + " N/m";
@@ -49,7 +55,8 @@ QString material_text(const mat::Tumour& t) {
 
 }  // namespace
 
-InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tumours"), parent) {
+// Untitled: its tab says "Tumours" (the room goes to the table).
+InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(parent) {
   auto* layout = new QVBoxLayout(this);
   auto* help = new QLabel(tr("Click the body to place a tumour (Shift+click moves the selected one)."), this);
   help->setWordWrap(true);
@@ -66,7 +73,8 @@ InstructorTumourPanel::InstructorTumourPanel(QWidget* parent) : QGroupBox(tr("Tu
 // The placed tumours, one row each.
 void InstructorTumourPanel::build_table(QVBoxLayout* layout) {
   table_ = new QTableWidget(0, 4, this);
-  table_->setHorizontalHeaderLabels({tr("Depth mm"), tr("Radius mm"), tr("Material"), tr("Random")});
+  // Depth: below the skin, or for a randomized tumour the range its rule can give it.
+  table_->setHorizontalHeaderLabels({tr("Depth (mm)"), tr("Radius (mm)"), tr("Material"), tr("Random")});
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -74,7 +82,7 @@ void InstructorTumourPanel::build_table(QVBoxLayout* layout) {
   // its tooltip has the whole).
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::Stretch);
-  table_->setMinimumHeight(110);
+  table_->setMinimumHeight(100);
   layout->addWidget(table_, 1);
 
 }
@@ -86,7 +94,8 @@ void InstructorTumourPanel::build_spec_form(QVBoxLayout* layout) {
   // Two decimals (10 um) and a low radius floor: a loaded tumour shows as it is written.
   depth_ = spin(this, 0.0, 200.0, 1.0, 2, tr(" mm"));
   depth_->setValue(10.0);
-  depth_->setToolTip(tr("Depth of the centre below the picked skin point"));
+  depth_->setToolTip(tr("Depth of the centre below the picked skin point, in mm (where the case writes the "
+                        "tumour; a randomized tumour takes its random depth instead)"));
   radius_ = spin(this, 0.01, 50.0, 0.5, 2, tr(" mm"));
   radius_->setValue(5.0);
   stiffness_ = spin(this, 0.0, 1e5, 100.0, 0, tr(" N/m"));
@@ -112,7 +121,7 @@ void InstructorTumourPanel::build_spec_form(QVBoxLayout* layout) {
   stiffening_->setToolTip(tr("How fast the tumour stiffens when pressed: its modulus grows as exp(stiffening x "
                              "strain). Carcinoma about 11, glandular 3.6, fat 0; 0: none"));
   stiffening_label_ = new QLabel(tr("Stiffening"), this);
-  form->addRow(tr("Depth"), depth_);
+  form->addRow(tr("Depth below skin"), depth_);
   form->addRow(tr("Radius"), radius_);
   form->addRow(tissue_label_, material_);
   form->addRow(material_label_, stiffness_);
@@ -122,7 +131,8 @@ void InstructorTumourPanel::build_spec_form(QVBoxLayout* layout) {
 
 }
 
-// Randomized placement: the ranges along x, along y and in depth a placed centre may take.
+// Randomized placement: the ranges along x, along y and in depth a placed centre may take,
+// in per cent: of the body's extent along x and y, of the local thickness in depth.
 void InstructorTumourPanel::build_placement_rule(QVBoxLayout* layout) {
   randomize_ = new QCheckBox(tr("Randomize placement per exercise"), this);
   layout->addWidget(randomize_);
@@ -130,22 +140,26 @@ void InstructorTumourPanel::build_placement_rule(QVBoxLayout* layout) {
   // The rule's u, v and depth fractions in words: u runs along x and v along y over the
   // body (its skeleton's parameters, about the share of its extent), depth is the share of
   // the local thickness below the skin.
-  const char* names[] = {"Along x", "Along y", "Depth"};
-  const double defaults[] = {0.3, 0.7, 0.3, 0.7, 0.4, 0.5};  // default.json's rule
+  const char* names[] = {"Along x", "Along y", "Random depth"};
+  const double defaults[] = {30, 70, 30, 70, 40, 50};  // default.json's rule, in %
   for (int r = 0; r < 3; ++r) {
     rules->addWidget(new QLabel(tr(names[r]), this), r, 0);
     for (int c = 0; c < 2; ++c) {
-      auto* box = spin(this, 0.0, 1.0, 0.05, 2, QString());
+      auto* box = spin(this, 0.0, 100.0, 5.0, 0, tr(" %"));
       box->setValue(defaults[2 * r + c]);
-      box->setToolTip(r == 0   ? tr("From, to: where along the body's x extent the centre may go (0 one end, 1 the other)")
-                      : r == 1 ? tr("From, to: where along the body's y extent the centre may go (0 one end, 1 the other)")
-                               : tr("From, to: share of the local thickness above the centre (0 at the skin, 0.5 "
-                                    "mid-depth, 1 at the base)"));
+      box->setToolTip(r == 0   ? tr("From, to: where along the body's x extent the centre may go (0 % one end, 100 % the other)")
+                      : r == 1 ? tr("From, to: where along the body's y extent the centre may go (0 % one end, 100 % the other)")
+                               : tr("From, to: depth of the centre as a share of the local thickness (0 % at the skin, "
+                                    "50 % mid-depth, 100 % at the base)"));
       rule_[2 * r + c] = box;
       rules->addWidget(box, r, 1 + c);
     }
   }
   layout->addLayout(rules);
+  random_depth_ = new QLabel(this);
+  random_depth_->setObjectName("randomDepth");
+  random_depth_->setWordWrap(true);
+  layout->addWidget(random_depth_);
 }
 
 void InstructorTumourPanel::connect_controls() {
@@ -165,9 +179,15 @@ void InstructorTumourPanel::connect_controls() {
     if (!fill_material(material_->currentData().toString())) return;  // "Custom": keep the values
     emit_spec(nullptr);
   });
-  connect(randomize_, &QCheckBox::toggled, this, [this] { emit_placement(); });
+  connect(randomize_, &QCheckBox::toggled, this, [this] {
+    show_random_depth();
+    emit_placement();
+  });
   for (auto* box : rule_) {
-    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] { emit_placement(); });
+    connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] {
+      show_random_depth();
+      emit_placement();
+    });
   }
   connect(remove_, &QPushButton::clicked, this, [this] {
     if (const auto k = selected()) emit remove_requested(*k);
@@ -180,11 +200,14 @@ void InstructorTumourPanel::show_draft(const author::CaseDraft& draft) {
   const auto keep = selected();
   const QSignalBlocker block(table_);
   table_->setRowCount(static_cast<int>(draft.tumour_count()));
+  ranges_ = draft.random_depth_ranges();
   for (std::size_t k = 0; k < draft.tumour_count(); ++k) {
     const auto t = draft.tumour(k);
     const auto s = draft.spec(k);
     const int row = static_cast<int>(k);
-    const QString cells[] = {s ? QString::number(s->depth * 1e3, 'f', 2) : QString("?"),
+    const auto& range = ranges_[k];
+    const QString depth = range ? depth_range_text(*range) : s ? QString::number(s->depth * 1e3, 'f', 2) : QString("?");
+    const QString cells[] = {depth,
                              t ? QString::number(t->radius * 1e3, 'f', 2) : QString("?"),
                              t ? material_text(*t) : QString("?"),
                              draft.placement(k) ? tr("yes") : tr("no")};
@@ -285,9 +308,10 @@ void InstructorTumourPanel::show_selected() {
     randomize_->setChecked(rule.has_value());
     if (rule) {
       const double values[] = {rule->u[0], rule->u[1], rule->v[0], rule->v[1], rule->depth[0], rule->depth[1]};
-      for (int c = 0; c < 6; ++c) rule_[c]->setValue(values[c]);
+      for (int c = 0; c < 6; ++c) rule_[c]->setValue(values[c] * 100.0);
     }
   }
+  show_random_depth();
   updating_ = was;
 }
 
@@ -304,9 +328,20 @@ author::TumourSpec InstructorTumourPanel::spec() const {
 
 std::optional<scripted::Placement> InstructorTumourPanel::placement() const {
   if (!randomize_->isChecked()) return std::nullopt;
-  return scripted::Placement{{rule_[0]->value(), rule_[1]->value()},
-                             {rule_[2]->value(), rule_[3]->value()},
-                             {rule_[4]->value(), rule_[5]->value()}};
+  const auto share = [this](int c) { return rule_[c]->value() / 100.0; };
+  return scripted::Placement{{share(0), share(1)}, {share(2), share(3)}, {share(4), share(5)}};
+}
+
+void InstructorTumourPanel::show_random_depth() {
+  const auto k = selected();
+  const bool on = randomize_->isChecked();
+  for (auto* box : rule_) box->setEnabled(on);
+  const auto range = k && *k < ranges_.size() && on ? ranges_[*k] : std::nullopt;
+  QString text = tr("Random depth: %1-%2 % of the thickness").arg(rule_[4]->value()).arg(rule_[5]->value());
+  if (range) text += tr(" (%1 mm here)").arg(depth_range_text(*range));
+  random_depth_->setText(text);
+  random_depth_->setVisible(on);
+  depth_->setEnabled(!range);  // a randomized tumour's depth is its random depth
 }
 
 void InstructorTumourPanel::emit_spec(const QDoubleSpinBox* changed) {
@@ -355,32 +390,43 @@ void InstructorTumourPanel::clear_problems() {
   for (auto* box : rule_) box->setStyleSheet(QString());
 }
 
-void InstructorTumourPanel::add_problem(std::size_t k, const QString& field, const QString& reason) {
+void InstructorTumourPanel::add_problem(std::size_t k, author::ProblemField field, const QString& reason) {
+  using author::ProblemField;
   const int row = static_cast<int>(k);
   if (row >= table_->rowCount()) return;
   // The cell of the field at fault, or the whole row.
-  int column = -1;
-  if (field.startsWith("center")) column = 0;
-  if (field.startsWith("radius")) column = 1;
-  if (field.startsWith("stiffness") || field.startsWith("modulus") || field.startsWith("stiffening")) column = 2;
-  if (field.startsWith("placement")) column = 3;
+  const int column = field == ProblemField::Depth       ? 0
+                     : field == ProblemField::Radius    ? 1
+                     : field == ProblemField::Material  ? 2
+                     : field == ProblemField::Placement ? 3
+                                                        : -1;
   for (int c = 0; c < table_->columnCount(); ++c) {
     if (auto* item = table_->item(row, c); item && (column < 0 || c == column)) {
       item->setBackground(kProblem);
       item->setToolTip(reason);
     }
   }
-  if (selected() == k) {
-    const QString red = "background: #ffc8c8;";
-    if (column == 0 || column < 0) depth_->setStyleSheet(red);
-    if (column == 1) radius_->setStyleSheet(red);
-    if (column == 2) {
-      stiffness_->setStyleSheet(red);
-      stiffening_->setStyleSheet(red);
-    }
-    if (column == 3) {
-      for (auto* box : rule_) box->setStyleSheet(red);
-    }
+  if (selected() != k) return;
+  const QString red = "background: #ffc8c8;";
+  if (field == ProblemField::Depth) depth_->setStyleSheet(red);
+  if (field == ProblemField::Radius) radius_->setStyleSheet(red);
+  if (field == ProblemField::Material) {
+    stiffness_->setStyleSheet(red);
+    stiffening_->setStyleSheet(red);
+  }
+  if (field == ProblemField::Placement) {
+    for (auto* box : rule_) box->setStyleSheet(red);
+  }
+}
+
+void InstructorTumourPanel::add_warning(std::size_t k, const QString& text) {
+  const int row = static_cast<int>(k);
+  if (row >= table_->rowCount()) return;
+  for (int c = 0; c < table_->columnCount(); ++c) {
+    auto* item = table_->item(row, c);
+    if (!item || item->background().color() == kProblem) continue;
+    item->setBackground(kWarning);
+    item->setToolTip(text);
   }
 }
 

@@ -19,6 +19,7 @@
 #include <QMouseEvent>
 #include <QScrollArea>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QToolBar>
 #include <QVBoxLayout>
 #include <QWindow>
@@ -28,6 +29,8 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 
+#include "palpa/author/palpability.hpp"
+#include "palpa/ui/instructor_exam_panel.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
 #include "palpa/ui/instructor_scene.hpp"
 #include "palpa/ui/instructor_tumour_panel.hpp"
@@ -62,6 +65,18 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
   left->addWidget(problems_box);
   layout->addLayout(left, 1);
 
+  layout->addWidget(build_side(central));
+  setCentralWidget(central);
+
+  build_view();
+  build_actions();
+  guard_editors();
+  connect_panels();
+  refresh();
+  frame_camera();
+}
+
+QWidget* InstructorWindow::build_side(QWidget* parent) {
   auto* side = new QWidget;
   auto* side_layout = new QVBoxLayout(side);
   auto* title_row = new QHBoxLayout;
@@ -70,22 +85,30 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
   title_->setObjectName("caseTitle");
   title_row->addWidget(title_);
   side_layout->addLayout(title_row);
-  preset_panel_ = new InstructorPresetPanel(side);
-  side_layout->addWidget(preset_panel_);
-  tumour_panel_ = new InstructorTumourPanel(side);
-  side_layout->addWidget(tumour_panel_, 1);
-  auto* scroll = new QScrollArea(central);
+  // Tabs, so that each part fits the panel at 1280 x 800 without scrolling it.
+  tabs_ = new QTabWidget(side);
+  tabs_->setObjectName("sideTabs");
+  auto* body_page = new QWidget(tabs_);
+  auto* body_layout = new QVBoxLayout(body_page);
+  preset_panel_ = new InstructorPresetPanel(body_page);
+  body_layout->addWidget(preset_panel_);
+  body_layout->addStretch(1);
+  tabs_->addTab(body_page, tr("Body"));
+  tumour_panel_ = new InstructorTumourPanel(tabs_);
+  tabs_->addTab(tumour_panel_, tr("Tumours"));
+  exam_panel_ = new InstructorExamPanel(tabs_);
+  tabs_->addTab(exam_panel_, tr("Exam"));
+  side_layout->addWidget(tabs_, 1);
+  auto* scroll = new QScrollArea(parent);
+  scroll->setObjectName("sidePanel");
   scroll->setWidget(side);
   scroll->setWidgetResizable(true);
-  scroll->setFixedWidth(360);
+  scroll->setFixedWidth(400);
   scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  layout->addWidget(scroll);
-  setCentralWidget(central);
+  return scroll;
+}
 
-  build_view();
-  build_actions();
-  guard_editors();
-
+void InstructorWindow::connect_panels() {
   connect(title_, &QLineEdit::editingFinished, this, [this] {
     title_->setModified(false);  // committed: refresh() shows the draft's title again
     const std::string text = title_->text().toStdString();
@@ -111,14 +134,27 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
     if (where.startsWith("/tumors/")) {
       bool ok = false;
       const int k = where.section('/', 2, 2).toInt(&ok);
-      if (ok) tumour_panel_->select(static_cast<std::size_t>(k));
+      if (ok) {
+        tumour_panel_->select(static_cast<std::size_t>(k));
+        tabs_->setCurrentWidget(tumour_panel_);
+      }
     } else if (where.startsWith("/title")) {
       title_->setFocus();
+    } else if (where.startsWith("/scoring") || where.startsWith("/exam_region") || where.startsWith("/description")) {
+      tabs_->setCurrentWidget(exam_panel_);
+    } else if (where.startsWith("/bodies") || where.startsWith("/preset")) {
+      tabs_->setCurrentIndex(0);
     }
   });
-
-  refresh();
-  frame_camera();
+  connect(exam_panel_, &InstructorExamPanel::description_changed, this, [this](const QString& text) {
+    const std::string d = text.toStdString();
+    if (d != draft_.description()) edit([this, d] { draft_.set_description(d); });
+  });
+  connect(exam_panel_, &InstructorExamPanel::scoring_changed, this, [this](const std::string& key, double value) {
+    edit([this, key, value] { draft_.set_scoring(key, value); });
+  });
+  connect(exam_panel_, &InstructorExamPanel::region_changed, this,
+          [this](const std::optional<author::ExamExtent>& extent) { edit([this, extent] { draft_.set_exam_region(extent); }); });
 }
 
 InstructorWindow::~InstructorWindow() {
@@ -162,6 +198,7 @@ bool InstructorWindow::filter_editor_event(QWidget* editor, QEvent* event) {
 }
 
 void InstructorWindow::commit_pending() {
+  exam_panel_->commit_description();  // also when focus events do not come (an inactive window)
   QWidget* focus = QApplication::focusWidget();
   if (!focus || !isAncestorOf(focus)) return;
   // Leaving the editor commits it (keyboard tracking is off); focus comes back after.
@@ -218,7 +255,7 @@ void InstructorWindow::build_actions() {
   overlay_->setCheckable(true);
   connect(overlay_, &QAction::toggled, this, &InstructorWindow::set_stiffness_overlay);
 
-  file->addAction(tr("Import stiffness &map..."), this, &InstructorWindow::import_dialog);
+  file->addAction(tr("Import stiffness &map…"), this, &InstructorWindow::import_dialog);
   auto* try_action = file->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
   try_action->setShortcut(QKeySequence(QStringLiteral("F5")));  // Ctrl+T is the File menu's "Train on a case"
 
@@ -250,6 +287,7 @@ void InstructorWindow::refresh() {
   preset_panel_->show_params(draft_.preset_or_nearest(), draft_.preset().has_value());
   preset_panel_->set_map_in_kpa(draft_.tissue_in_pa());
   tumour_panel_->show_draft(draft_);
+  exam_panel_->show_draft(draft_);
 
   // The bodies are drawn from the document without its tumours, so that a tumour's
   // problem does not hide the body it is in.
@@ -281,38 +319,62 @@ void InstructorWindow::refresh() {
     if (auto t = draft_.tumour(k)) tumours.push_back(*t);
   }
   scene_->set_tumours(tumours, tumour_panel_->selected());
-  show_problems(draft_.validate());
+  const auto problems = draft_.validate();
+  std::vector<author::AuthorProblem> warnings;
+  if (problems.empty()) {
+    try {
+      warnings = author::palpability_warnings(author::check_palpability(draft_.valid_case(), draft_.source()));
+    } catch (const std::exception&) {
+      // Valid a moment ago: nothing to warn about that validate() would not say.
+    }
+  }
+  show_problems(problems, warnings);
   undo_->setEnabled(draft_.can_undo());
   redo_->setEnabled(draft_.can_redo());
   render();
 }
 
-void InstructorWindow::show_problems(const std::vector<io::Problem>& problems) {
+void InstructorWindow::show_problems(const std::vector<io::Problem>& problems,
+                                     const std::vector<author::AuthorProblem>& warnings) {
   problems_->clear();
   tumour_panel_->clear_problems();
+  exam_panel_->clear_problems();
   preset_panel_->set_problem(QString());
   title_->setStyleSheet(QString());
   title_->setToolTip(QString());
-  for (const auto& p : problems) {
-    const QString where = QString::fromStdString(p.where);
-    const QString reason = QString::fromStdString(p.reason);
-    auto* item = new QListWidgetItem(where + ": " + reason, problems_);
-    item->setData(Qt::UserRole, where);
-    item->setForeground(QColor(170, 20, 20));
-    if (where.startsWith("/tumors/")) {
-      bool ok = false;
-      const int k = where.section('/', 2, 2).toInt(&ok);
-      if (ok) tumour_panel_->add_problem(static_cast<std::size_t>(k), where.section('/', 3), reason);
-    } else if (where.startsWith("/bodies") || where.startsWith("/preset")) {
-      preset_panel_->set_problem(reason);
-    } else if (where.startsWith("/title")) {
-      title_->setStyleSheet("background: #ffc8c8;");
-      title_->setToolTip(reason);
-    }
-  }
+  for (const auto& p : author::describe(problems)) show_problem(p);
   if (problems.empty()) {
-    auto* item = new QListWidgetItem(tr("No problems: the case is valid."), problems_);
+    const QString valid = warnings.empty() ? tr("No problems: the case is valid.")
+                                           : tr("No problems: the case is valid (%n warning(s) below).", "",
+                                                static_cast<int>(warnings.size()));
+    auto* item = new QListWidgetItem(valid, problems_);
     item->setForeground(QColor(20, 120, 40));
+  }
+  for (const auto& w : warnings) show_problem(w);
+}
+
+void InstructorWindow::show_problem(const author::AuthorProblem& p) {
+  using author::ProblemField;
+  const QString text = QString::fromStdString(p.text);
+  auto* item = new QListWidgetItem(text, problems_);
+  item->setData(Qt::UserRole, QString::fromStdString(p.where));
+  item->setData(kWarningRole, p.warning);
+  item->setForeground(p.warning ? QColor(150, 90, 0) : QColor(170, 20, 20));
+  if (p.warning) {
+    if (p.tumour) tumour_panel_->add_warning(*p.tumour, text);
+    return;
+  }
+  if (p.tumour) {
+    tumour_panel_->add_problem(*p.tumour, p.field, text);
+  } else if (p.field == ProblemField::Body) {
+    preset_panel_->set_problem(text);
+  } else if (p.field == ProblemField::Scoring) {
+    exam_panel_->add_scoring_problem(p.key, text);
+  } else if (p.field == ProblemField::ExamRegion) {
+    exam_panel_->add_region_problem(text);
+  } else if (p.field == ProblemField::Title) {
+    title_->setStyleSheet("background: #ffc8c8;");
+    title_->setToolTip(text);
   }
 }
 
@@ -354,6 +416,7 @@ bool InstructorWindow::click_at(const QPoint& pos, bool move_selected) {
     edit([this, &added, where, spec] { added = draft_.add_tumour(where, spec); });
     if (added) {
       tumour_panel_->select(added);
+      tabs_->setCurrentWidget(tumour_panel_);  // its values are what the instructor edits next
       set_message(tr("Tumour %1 placed %2 mm below the skin.").arg(*added + 1).arg(spec.depth * 1e3, 0, 'f', 1));
     }
   }

@@ -113,7 +113,7 @@ TraineeWindow* InstructorWindow::try_it() {
   options.mode = "instructor-try";
   std::random_device entropy;
   options.seed = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
-  const std::filesystem::path dir = sessions_dir_.empty() ? ui::sessions_dir() : sessions_dir_;
+  const std::filesystem::path dir = sessions_dir_.empty() ? ui::try_it_sessions_dir() : sessions_dir_;
   options.session_path = dir / fmt::format("tryout-{}-{}.palpa", ui::utc_stamp(), ++try_count_);
   if (device_opener_) {
     try {
@@ -131,6 +131,7 @@ TraineeWindow* InstructorWindow::try_it() {
                                                     : QString::fromStdString(draft_.path().filename().string());
     auto* window = new TraineeWindow(std::move(exercise), case_name, true);
     window->setAttribute(Qt::WA_DeleteOnClose);
+    if (try_adopter_) try_adopter_(*window);
     window->show();
     try_windows_.emplace_back(window);
     set_message(tr("Trying the case; the session is recorded in %1.").arg(QString::fromStdString(options.session_path.string())));

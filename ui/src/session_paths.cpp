@@ -16,6 +16,8 @@ std::filesystem::path sessions_dir() {
   return base / "palpa" / "sessions";
 }
 
+std::filesystem::path try_it_sessions_dir() { return sessions_dir() / "try-it"; }
+
 std::string utc_stamp() {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "palpa/io/json_text.hpp"
+#include "palpa/mat/mat_body.hpp"
 #include "palpa/scene/scene.hpp"
 #include "palpa/render/surface_pick.hpp"
 
@@ -500,6 +501,126 @@ std::optional<scripted::Placement> CaseDraft::placement(std::size_t k) const {
       return std::nullopt;
     }
     *range = {p[key][0].get<double>(), p[key][1].get<double>()};
+  }
+  return out;
+}
+
+std::vector<std::optional<std::array<double, 2>>> CaseDraft::random_depth_ranges() const {
+  std::vector<std::optional<std::array<double, 2>>> out(tumour_count());
+  std::vector<std::size_t> ruled;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (placement(k) && tumour(k)) ruled.push_back(k);
+  }
+  if (ruled.empty()) return out;
+  auto file = parsed();
+  if (!file) return out;
+  file->tumours.clear();
+  std::optional<scene::Scene> scene;
+  try {
+    scene.emplace(scene::Scene::build(*file, source()));
+  } catch (const std::exception&) {
+    return out;
+  }
+  constexpr int kSamples = 9;
+  for (const std::size_t k : ruled) {
+    const auto rule = *placement(k);
+    const std::string body = tumour(k)->body;
+    for (std::size_t b = 0; b < scene->size(); ++b) {
+      if (scene->body(b).body.id() != body) continue;
+      double thin = std::numeric_limits<double>::infinity(), thick = 0.0;
+      for (int i = 0; i < kSamples; ++i) {
+        for (int j = 0; j < kSamples; ++j) {
+          const double u = rule.u[0] + (rule.u[1] - rule.u[0]) * i / (kSamples - 1);
+          const double v = rule.v[0] + (rule.v[1] - rule.v[0]) * j / (kSamples - 1);
+          double s[mat::kRadius + 1];
+          scene->body(b).body.skeleton().evaluate(u, v, s, mat::kRadius + 1);
+          const double thickness = 2.0 * std::max(0.0, s[mat::kRadius]);  // as placement: 2R
+          thin = std::min(thin, thickness);
+          thick = std::max(thick, thickness);
+        }
+      }
+      out[k] = std::array<double, 2>{rule.depth[0] * thin, rule.depth[1] * thick};
+    }
+  }
+  return out;
+}
+
+void CaseDraft::set_description(const std::string& text) {
+  if (!doc_.is_object() && !doc_.is_null()) throw std::invalid_argument("the case is not a JSON object: it has no description");
+  begin_edit();
+  if (text.empty()) {
+    doc_.erase("description");
+  } else {
+    doc_["description"] = text;
+  }
+}
+
+void CaseDraft::set_scoring(const std::string& key, std::optional<double> value) {
+  if (!doc_.is_object() && !doc_.is_null()) throw std::invalid_argument("the case is not a JSON object: it has no scoring");
+  begin_edit();
+  if (value) {
+    if (!doc_.contains("scoring") || !doc_["scoring"].is_object()) doc_["scoring"] = json::object();
+    doc_["scoring"][key] = *value;
+  } else if (doc_.contains("scoring") && doc_["scoring"].is_object()) {
+    doc_["scoring"].erase(key);
+    if (doc_["scoring"].empty()) doc_.erase("scoring");
+  }
+}
+
+void CaseDraft::set_exam_region(const std::optional<ExamExtent>& extent) {
+  if (!doc_.is_object() && !doc_.is_null()) throw std::invalid_argument("the case is not a JSON object: it has no exam region");
+  std::vector<json> ids;
+  if (extent) {
+    for (std::size_t b = 0; doc_.contains("bodies") && doc_["bodies"].is_array() && b < doc_["bodies"].size(); ++b) {
+      ids.push_back(body_id(b));  // throws before anything changes
+    }
+  }
+  begin_edit();
+  if (!extent) {
+    doc_.erase("exam_region");
+    return;
+  }
+  json region = json::array();
+  for (const auto& id : ids) region.push_back({{"body", id}, {"u", extent->u}, {"v", extent->v}});
+  doc_["exam_region"] = std::move(region);
+}
+
+std::string CaseDraft::description() const {
+  return doc_.is_object() && doc_.contains("description") && doc_["description"].is_string()
+             ? doc_["description"].get<std::string>()
+             : std::string();
+}
+
+io::Thresholds CaseDraft::thresholds() const {
+  std::vector<io::Problem> problems;
+  return doc_.is_object() ? io::thresholds_from_case(doc_, problems) : io::Thresholds{};
+}
+
+CaseDraft::RegionKind CaseDraft::exam_region_kind() const {
+  if (!doc_.is_object() || !doc_.contains("exam_region")) return RegionKind::Whole;
+  return exam_extent() ? RegionKind::Extent : RegionKind::Custom;
+}
+
+std::optional<ExamExtent> CaseDraft::exam_extent() const {
+  if (!doc_.is_object() || !doc_.contains("exam_region") || !doc_.contains("bodies")) return std::nullopt;
+  const json& region = doc_["exam_region"];
+  const json& bodies = doc_["bodies"];
+  if (!region.is_array() || !bodies.is_array() || region.size() != bodies.size() || region.empty()) return std::nullopt;
+  std::optional<ExamExtent> out;
+  for (std::size_t b = 0; b < region.size(); ++b) {
+    const json& part = region[b];
+    if (!part.is_object() || !bodies[b].is_object() || !part.contains("body") || part["body"] != bodies[b]["id"]) {
+      return std::nullopt;
+    }
+    ExamExtent e;
+    for (auto [key, range] : {std::pair{"u", &e.u}, std::pair{"v", &e.v}}) {
+      if (!part.contains(key)) continue;  // the whole range
+      const json& r = part[key];
+      if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number()) return std::nullopt;
+      *range = {r[0].get<double>(), r[1].get<double>()};
+    }
+    if (out && !(*out == e)) return std::nullopt;
+    out = e;
   }
   return out;
 }

@@ -476,6 +476,13 @@ CaseFile validate(json doc, Validator& v) {
   } else {
     out.title = doc["title"].get<std::string>();
   }
+  // Optional: what the case is about, for whoever picks it (the instructor window edits it).
+  if (doc.contains("description") && !doc["description"].is_string()) {
+    v.add("/description", std::string("description must be a string, not ") + doc["description"].type_name());
+  } else if (doc.contains("description") &&
+             utf8_length(doc["description"].get_ref<const std::string&>()) > L::kMaxDescriptionLength) {
+    v.add("/description", fmt::format("description is longer than {} characters", L::kMaxDescriptionLength));
+  }
 
   if (!doc.contains("bodies")) {
     v.add("/", "missing \"bodies\"");

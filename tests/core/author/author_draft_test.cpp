@@ -542,3 +542,94 @@ TEST(AuthorDraft, FailedEditsLeaveNoUndoStep) {
 
 }  // namespace
 }  // namespace palpa::author
+
+namespace palpa::author {
+namespace {
+
+// The depth range a randomized tumour can take: on the 30 mm slab a 40-50 % rule is
+// 12-15 mm; on the breast (a dome) the centres scripted::place_tumours draws for many
+// seeds all lie within the range given, and fill most of it.
+TEST(AuthorDraft, RandomDepthRangeIsWhereSeededPlacementPutsTheCentre) {
+  CaseDraft slab(preset_defaults(Preset::Slab));
+  slab.add_tumour(pick_top(slab, 0.0, 0.0), {0.012, 0.004, 2000.0});
+  EXPECT_FALSE(slab.random_depth_ranges()[0].has_value());
+  slab.set_placement(0, scripted::Placement{{0.3, 0.7}, {0.3, 0.7}, {0.4, 0.5}});
+  const auto flat = slab.random_depth_ranges()[0];
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_NEAR((*flat)[0], 0.012, 2e-4);
+  EXPECT_NEAR((*flat)[1], 0.015, 2e-4);
+
+  CaseDraft breast(preset_defaults_in_kpa(Preset::Breast));
+  breast.add_tumour(pick_top(breast, 0.0, 0.0), {0.012, 0.005, 0.0, 19440.0, 0.0});
+  breast.set_placement(0, scripted::Placement{{0.3, 0.7}, {0.3, 0.7}, {0.4, 0.5}});
+  const auto range = breast.random_depth_ranges()[0];
+  ASSERT_TRUE(range.has_value());
+  const auto file = breast.valid_case();
+  io::CaseFile bodies = file;
+  bodies.tumours.clear();
+  const auto scene = scene::Scene::build(bodies, "breast");
+  const render::TopContourPicker picker(scene);
+  double lo = 1.0, hi = 0.0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    const auto placed = scripted::place_tumours(file, seed, "breast").tumours[0];
+    // The depth below the skin straight above (the dome is nearly level where the rule puts it).
+    const palpa::Vec3 c(placed.center[0], placed.center[1], placed.center[2]);
+    const auto hit = picker.pick(c + palpa::Vec3(0, 0, 1.0), palpa::Vec3(0, 0, -1));
+    ASSERT_TRUE(hit.has_value());
+    const double depth = (hit->point - c).norm();
+    lo = std::min(lo, depth);
+    hi = std::max(hi, depth);
+  }
+  EXPECT_GE(lo, (*range)[0] - 0.5e-3) << lo << " " << (*range)[0];
+  EXPECT_LE(hi, (*range)[1] + 0.5e-3) << hi << " " << (*range)[1];
+  EXPECT_LT(lo, (*range)[0] + 0.3 * ((*range)[1] - (*range)[0]));
+  EXPECT_GT(hi, (*range)[1] - 0.3 * ((*range)[1] - (*range)[0]));
+}
+
+}  // namespace
+}  // namespace palpa::author
+
+namespace palpa::author {
+namespace {
+
+// The exam settings the window edits: a description, scoring keys in SI and one rectangle
+// of every body, each an undo step, read back by palpa-cli's own reader (thresholds).
+TEST(AuthorDraft, ExamSettingsAreWrittenWhereTheFormatSaysAndUndone) {
+  CaseDraft draft(preset_defaults(Preset::Slab));
+  EXPECT_EQ(draft.exam_region_kind(), CaseDraft::RegionKind::Whole);
+  draft.set_description("A slab with nothing in it.");
+  draft.set_scoring("hit_margin", 0.008);
+  draft.set_exam_region(ExamExtent{{0.1, 0.6}, {0.2, 0.8}});
+  const auto& doc = draft.document();
+  EXPECT_EQ(doc["description"], "A slab with nothing in it.");
+  EXPECT_EQ(doc["scoring"]["hit_margin"], 0.008);
+  EXPECT_EQ(doc["exam_region"], nlohmann::json::parse(R"([{"body": "slab", "u": [0.1, 0.6], "v": [0.2, 0.8]}])"));
+  EXPECT_EQ(draft.exam_region_kind(), CaseDraft::RegionKind::Extent);
+  EXPECT_EQ(draft.exam_extent(), (ExamExtent{{0.1, 0.6}, {0.2, 0.8}}));
+  std::vector<io::Problem> problems;
+  const auto t = io::thresholds_from_case(draft.valid_case().document, problems);
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(t.hit_margin, 0.008);
+  EXPECT_EQ(draft.thresholds().hit_margin, 0.008);
+  ASSERT_EQ(t.exam_region.size(), 1u);
+  EXPECT_EQ(t.exam_region[0].u0, 0.1);
+  // Two rectangles on one body: not what the window edits, kept as written.
+  nlohmann::json two = draft.document();
+  two["exam_region"].push_back({{"body", "slab"}, {"u", {0.7, 0.9}}});
+  EXPECT_EQ(CaseDraft::from_document(two, "two").exam_region_kind(), CaseDraft::RegionKind::Custom);
+  draft.undo();
+  EXPECT_FALSE(draft.document().contains("exam_region"));
+  draft.set_scoring("hit_margin", std::nullopt);
+  EXPECT_FALSE(draft.document().contains("scoring"));
+  draft.set_description("");
+  EXPECT_FALSE(draft.document().contains("description"));
+  // A description must be a string: the reader says so at its pointer.
+  nlohmann::json bad = draft.document();
+  bad["description"] = 3;
+  const auto found = CaseDraft::from_document(bad, "bad").validate();
+  ASSERT_FALSE(found.empty());
+  EXPECT_EQ(found.front().where, "/description");
+}
+
+}  // namespace
+}  // namespace palpa::author

@@ -16,6 +16,7 @@
 #include "palpa/author/stiffness_map.hpp"
 #include "palpa/scripted/tumour_placement.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/io/thresholds.hpp"
 
 namespace palpa::author {
 
@@ -36,6 +37,14 @@ struct TumourSpec {
   double modulus = 0.0;
   /// With a modulus: its strain stiffening b (E exp(b eps); docs/model.md), 0: none.
   double stiffening = 0.0;
+};
+
+/// The exam region as the instructor window edits it: the same rectangle of every body,
+/// as shares of its skeleton's parameters (u along x, v along y; 0 one end, 1 the other).
+struct ExamExtent {
+  std::array<double, 2> u{0.0, 1.0};
+  std::array<double, 2> v{0.0, 1.0};
+  bool operator==(const ExamExtent&) const = default;
 };
 
 /// Approximate memory (bytes) a JSON value holds: its nodes, strings and containers.
@@ -105,7 +114,26 @@ class CaseDraft {
   /// tissue in N/m, or as apply_stiffness_map.
   void apply_modulus_map(std::size_t b, const StiffnessMap& map, double e_min, double e_max);
 
+  /// Sets the case's "description" (an empty text removes it).
+  void set_description(const std::string& text);
+  /// Sets scoring key `key` to `value` (SI, as docs/case-format.md gives it), or with
+  /// nothing removes it (the default applies). A bad value shows up in validate().
+  void set_scoring(const std::string& key, std::optional<double> value);
+  /// Sets the exam region to the same rectangle of every body, or with nothing to the whole
+  /// top contour of every body (removes "exam_region").
+  void set_exam_region(const std::optional<ExamExtent>& extent);
+
   // --- Reading back what the editor shows ---
+
+  std::string description() const;
+  /// The thresholds the case is scored with: the defaults overridden by its "scoring" and
+  /// "exam_region" (io::thresholds_from_case; a bad value leaves its default).
+  io::Thresholds thresholds() const;
+  /// Whether the exam region is the whole surface (no "exam_region"), one rectangle of every
+  /// body (exam_extent()), or something else the window does not edit (kept as written).
+  enum class RegionKind { Whole, Extent, Custom };
+  RegionKind exam_region_kind() const;
+  std::optional<ExamExtent> exam_extent() const;
 
   std::string title() const;
   /// The preset the bodies were made from, if the document records one.
@@ -127,6 +155,11 @@ class CaseDraft {
   /// depth (distance from the anchor), radius and stiffness or modulus of tumour k.
   std::optional<TumourSpec> spec(std::size_t k) const;
   std::optional<scripted::Placement> placement(std::size_t k) const;
+  /// For each tumour, the depths below the skin (m, of its centre) its randomization rule
+  /// can give it: the rule's depth shares of the local thickness over its (u, v) rectangle
+  /// (sampled on a 9 x 9 grid), as scripted::place_tumours draws them; nothing for a tumour
+  /// without a rule, or when the bodies cannot be fitted.
+  std::vector<std::optional<std::array<double, 2>>> random_depth_ranges() const;
 
   // --- Undo ---
   bool can_undo() const { return !undo_.empty(); }

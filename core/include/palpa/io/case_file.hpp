@@ -48,6 +48,7 @@ struct CaseLimits {
   static constexpr int kMaxGrid = 256;
   static constexpr std::size_t kMaxIdLength = 64;
   static constexpr std::size_t kMaxTitleLength = 1024;
+  static constexpr std::size_t kMaxDescriptionLength = 16384;  // characters of "description"
   static constexpr double kMaxCoordinate = 100.0;  // m
   static constexpr double kMaxRadius = 10.0;       // m
   static constexpr double kMaxStiffness = 1e9;     // N/m

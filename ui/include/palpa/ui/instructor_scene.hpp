@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <vtkSmartPointer.h>
@@ -47,6 +48,9 @@ class InstructorScene {
   /// The range the overlay's colours span, in its unit (N/m, or kPa: overlay_in_kpa).
   std::array<double, 2> stiffness_range() const { return range_; }
   bool overlay_in_kpa() const { return in_kpa_; }
+  /// What the legend reads: its tick labels, or on a uniform body its one value with the
+  /// unit ("3.25 kPa").
+  std::vector<std::string> legend_labels() const;
   /// A body's drawn top contour (tests read its points and scalars).
   vtkPolyData* top(std::size_t body) const;
 
@@ -56,6 +60,9 @@ class InstructorScene {
     vtkSmartPointer<vtkActor> actor;
   };
   void clear_bodies();
+  /// Sets the colours' and legend's range from range_ (one value on a uniform body).
+  void show_legend_range();
+  std::string legend_value(double value) const;
 
   vtkRenderer* bodies_;
   vtkRenderer* overlay_;
@@ -68,6 +75,7 @@ class InstructorScene {
   std::array<double, 2> range_{0.0, 1.0};
   bool overlay_on_ = false;
   bool in_kpa_ = false;
+  bool uniform_ = false;
 };
 
 }  // namespace palpa::ui

@@ -4,11 +4,14 @@
 // a case whose tissue is given in Pa) of the selected one (or of the next one a click
 // places, when none is selected), and its randomization rule: the (u, v) rectangle and
 // the depth fraction range a seeded exercise draws its centre from.
+#include <array>
 #include <optional>
+#include <vector>
 
 #include <QGroupBox>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/author/problem_text.hpp"
 
 class QCheckBox;
 class QComboBox;
@@ -36,10 +39,13 @@ class InstructorTumourPanel : public QGroupBox {
   bool material_in_kpa() const { return in_kpa_; }
   /// The rule the controls show, or nothing when randomization is off.
   std::optional<scripted::Placement> placement() const;
-  /// Highlights rows holding a problem (red) with their reasons as tooltips; `field` is the
-  /// part of the pointer after /tumors/K ("radius", "placement/u", ...), for the controls.
+  /// Highlights the cell of the field at fault (red; the whole row for the tumour as a
+  /// whole) with the reason as its tooltip, and the field's control when tumour k is the
+  /// selected one: the radius box for a radius that reaches beyond the skin, not the depth.
   void clear_problems();
-  void add_problem(std::size_t k, const QString& field, const QString& reason);
+  void add_problem(std::size_t k, author::ProblemField field, const QString& reason);
+  /// Marks tumour k's row (pale yellow, unless it holds a problem) with a warning.
+  void add_warning(std::size_t k, const QString& text);
 
   QTableWidget* table() const { return table_; }
   QDoubleSpinBox* depth_box() const { return depth_; }
@@ -50,8 +56,11 @@ class InstructorTumourPanel : public QGroupBox {
   QComboBox* material_box() const { return material_; }
   QDoubleSpinBox* stiffening_box() const { return stiffening_; }
   QCheckBox* randomize_box() const { return randomize_; }
-  /// u low, u high, v low, v high, depth low, depth high.
+  /// u low, u high, v low, v high, depth low, depth high: in per cent (of the body's extent
+  /// along x and y, of the local thickness in depth).
   QDoubleSpinBox* rule_box(int index) const { return rule_[index]; }
+  /// "Random depth: 40-50 % of the thickness (20.0-25.0 mm here)" for the selected tumour.
+  QLabel* random_depth_label() const { return random_depth_; }
   QPushButton* remove_button() const { return remove_; }
 
  signals:
@@ -70,6 +79,8 @@ class InstructorTumourPanel : public QGroupBox {
   /// Emits the selected tumour's spec with only `changed`'s field from the boxes.
   void emit_spec(const QDoubleSpinBox* changed);
   void emit_placement();
+  /// The random depth note and which depth control applies (the rule's or the fixed depth).
+  void show_random_depth();
   /// Shows the material box in kPa (a modulus) or N/m (a stiffness); resets its value to
   /// the unit's default when the unit changes.
   void set_material_unit(bool kpa);
@@ -93,6 +104,8 @@ class InstructorTumourPanel : public QGroupBox {
   bool in_kpa_ = false;
   QCheckBox* randomize_ = nullptr;
   QDoubleSpinBox* rule_[6] = {};
+  QLabel* random_depth_ = nullptr;
+  std::vector<std::optional<std::array<double, 2>>> ranges_;  // each tumour's random depth range (m)
   QPushButton* remove_ = nullptr;
   bool updating_ = false;
 };

@@ -19,6 +19,7 @@
 #include <vtkSmartPointer.h>
 
 #include "palpa/author/case_draft.hpp"
+#include "palpa/author/problem_text.hpp"
 #include "palpa/engine/device.hpp"
 #include "palpa/render/surface_pick.hpp"
 
@@ -26,11 +27,13 @@ class QAction;
 class QLabel;
 class QLineEdit;
 class QListWidget;
+class QTabWidget;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
 
 namespace palpa::ui {
 
+class InstructorExamPanel;
 class InstructorPresetPanel;
 class InstructorScene;
 class InstructorTumourPanel;
@@ -47,16 +50,25 @@ class InstructorWindow : public QMainWindow {
   VtkView* view() const { return view_; }
   InstructorPresetPanel* preset_panel() const { return preset_panel_; }
   InstructorTumourPanel* tumour_panel() const { return tumour_panel_; }
-  /// The validation problems, one item per problem: "POINTER: reason".
+  InstructorExamPanel* exam_panel() const { return exam_panel_; }
+  /// The side panel's tabs: Body, Tumours, Exam (description, scoring, exam region).
+  QTabWidget* side_tabs() const { return tabs_; }
+  /// The validation problems and warnings, one item each, in mm and kPa with the tumour's
+  /// row ("Tumour 2, radius: ..."); the item's Qt::UserRole holds the JSON pointer.
   QListWidget* problems() const { return problems_; }
+  static constexpr int kWarningRole = Qt::UserRole + 1;
   QLineEdit* title_edit() const { return title_; }
   const InstructorScene& scene() const { return *scene_; }
   QAction* undo_action() const { return undo_; }
   QAction* redo_action() const { return redo_; }
   /// Where a scene point (m) appears in the view (widget pixels).
   QPoint to_view(const palpa::Vec3& point) const;
-  /// Where "Try it" records its sessions (created when needed).
+  /// Where "Try it" records its sessions (created when needed); by default
+  /// ui::try_it_sessions_dir(), never the trainees' sessions folder.
   void set_sessions_dir(const std::filesystem::path& dir) { sessions_dir_ = dir; }
+  /// Called with each trainee window "Try it" opens, before it is shown: the application
+  /// gives it the menus every window has (File, Device).
+  void set_try_window_adopter(std::function<void(QMainWindow&)> adopter) { try_adopter_ = std::move(adopter); }
   /// The device "Try it" opens the trainee window with, called once per try (e.g. the
   /// application's chosen device). It may return null (the virtual device the pointer
   /// steers, also the default without an opener) or throw std::exception: the first line
@@ -105,12 +117,19 @@ class InstructorWindow : public QMainWindow {
 
  private:
   void build_view();
+  /// The side panel: the title over the Body, Tumours and Exam tabs, in a scroll area.
+  QWidget* build_side(QWidget* parent);
+  void connect_panels();
   void build_actions();
   /// Runs an edit of the draft; errors become a message. Then refresh().
   void edit(const std::function<void()>& op);
   /// Shows the draft: panels, problems, bodies (refit when they changed), tumours.
   void refresh();
-  void show_problems(const std::vector<io::Problem>& problems);
+  /// The problems in the instructor's terms (author::describe), then the warnings (e.g. a
+  /// tumour likely not palpable), each item carrying its JSON pointer (Qt::UserRole) and
+  /// whether it is a warning (kWarningRole).
+  void show_problems(const std::vector<io::Problem>& problems, const std::vector<author::AuthorProblem>& warnings = {});
+  void show_problem(const author::AuthorProblem& p);
   void frame_camera();
   void render();
   void set_message(const QString& text);
@@ -131,6 +150,8 @@ class InstructorWindow : public QMainWindow {
   VtkView* view_ = nullptr;
   InstructorPresetPanel* preset_panel_ = nullptr;
   InstructorTumourPanel* tumour_panel_ = nullptr;
+  InstructorExamPanel* exam_panel_ = nullptr;
+  QTabWidget* tabs_ = nullptr;
   QListWidget* problems_ = nullptr;
   QLineEdit* title_ = nullptr;
   QAction* undo_ = nullptr;
@@ -144,6 +165,7 @@ class InstructorWindow : public QMainWindow {
   std::filesystem::path sessions_dir_;
   std::function<std::shared_ptr<engine::Device>()> device_opener_;
   std::function<QString()> save_path_chooser_;
+  std::function<void(QMainWindow&)> try_adopter_;
   std::vector<QPointer<TraineeWindow>> try_windows_;
   QString message_;
   QPoint press_at_;
