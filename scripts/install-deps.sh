@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth
+  libxcb1-dev xdotool  # app/gui watches its X windows (xcb DestroyNotify); test_gui_signal.py destroys one with xdotool
   pkg-config libhidapi-dev libusb-1.0-0-dev
   postgresql libpq-dev  # store/: the centre store (libpq; the server for its tests)
   libcurl4-openssl-dev  # lrs/: xAPI statements to a learning record store

@@ -9,6 +9,8 @@ add_executable(score_tests
   core/score/score_session_test.cpp
   core/score/score_pattern_test.cpp
   core/score/score_stream_test.cpp
+  core/score/score_figures_test.cpp
+  core/score/live_coverage_test.cpp
 )
 find_package(SQLite3 REQUIRED)  # score_stream_test edits copies of sessions (events, damage)
 target_link_libraries(score_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)

@@ -65,10 +65,11 @@ add_executable(ui_review_tests
 set_target_properties(ui_review_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_review_tests PRIVATE palpa_ui Qt5::Test)
 target_compile_definitions(ui_review_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-                                                   PALPA_GUI_EXE="$<TARGET_FILE:palpa>")
+                                                   PALPA_GUI_EXE="$<TARGET_FILE:palpa>"
+                                                   PALPA_CLI_EXE="$<TARGET_FILE:palpa-cli>")
 vtk_module_autoinit(TARGETS ui_review_tests MODULES ${VTK_LIBRARIES})
 palpa_warnings(ui_review_tests)
-add_dependencies(ui_review_tests palpa)
+add_dependencies(ui_review_tests palpa palpa-cli)
 add_test(NAME ui.review COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_review_tests>)
 if(PALPA_SANITIZE)
   set_tests_properties(ui.review PROPERTIES ENVIRONMENT

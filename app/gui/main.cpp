@@ -43,6 +43,10 @@ enum ExitCode : int { kOk = 0, kFailure = 1, kBadInput = 2 };
 
 void print_error(const std::string& message) { std::fprintf(stderr, "palpa: error: %s\n", message.c_str()); }
 
+// A case or session file that cannot be used: one line that starts with the file, as
+// everywhere in Palpa ("FILE: FIELD: problem"; palpa-cli and the File menu say the same).
+void print_file_error(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
+
 // --screenshot: the window drawn once at its default size, saved; the exit code.
 int screenshot_of(QWidget& window, const std::string& path) {
   if (palpa::ui::save_screenshot(window, QString::fromStdString(path))) return kOk;
@@ -69,13 +73,13 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
     session = palpa::session::read_session(session_path);
     score = palpa::score::score_session(session, session_path);
   } catch (const palpa::session::SessionError& e) {
-    print_error(e.what());
+    print_file_error(e.what());
     return kBadInput;
   } catch (const std::exception& e) {
     std::string line = session_path;
     line += ": ";
     line += e.what();
-    print_error(line);
+    print_file_error(line);
     return kBadInput;
   }
   init_gui_format();
@@ -95,7 +99,7 @@ int run_review(int argc, char** argv, const std::string& session_path, const std
     palpa::gui::quit_on_signals();
     return QApplication::exec();
   } catch (const palpa::io::CaseError& e) {
-    print_error(e.what());
+    print_file_error(e.what());
     return kBadInput;
   } catch (const std::exception& e) {
     print_error(e.what());
@@ -113,7 +117,7 @@ int run_instructor(int argc, char** argv, const std::string& case_path, const st
     try {
       draft = palpa::author::CaseDraft::load(case_path);
     } catch (const palpa::io::CaseError& e) {
-      std::fprintf(stderr, "%s\n", e.what());
+      print_file_error(e.what());
       return kBadInput;
     }
   }
@@ -213,7 +217,7 @@ std::unique_ptr<palpa::live::LiveExercise> trainee_exercise(const GuiOptions& o,
       o.session_path.empty() ? palpa::gui::default_session_path() : std::filesystem::path(o.session_path);
   status = kBadInput;
   if (o.screenshot.empty() && std::filesystem::exists(options.session_path)) {
-    print_error(options.session_path.string() + ": file: exists (a session is never overwritten)");
+    print_file_error(options.session_path.string() + ": file: exists (a session is never overwritten)");
     return nullptr;
   }
   try {
@@ -227,7 +231,7 @@ std::unique_ptr<palpa::live::LiveExercise> trainee_exercise(const GuiOptions& o,
   } catch (const palpa::io::CaseError& e) {
     std::string line = e.what();
     if (e.problems().size() > 1) line += fmt::format(" (and {} more: palpa-cli validate lists them)", e.problems().size() - 1);
-    std::fprintf(stderr, "%s\n", line.c_str());
+    print_file_error(line);
   } catch (const std::exception& e) {
     print_error(e.what());
     status = kFailure;

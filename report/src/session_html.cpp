@@ -7,6 +7,7 @@
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
 #include "palpa/report/summary_csv.hpp"
+#include "palpa/score/figures.hpp"
 
 namespace palpa::report {
 namespace {
@@ -94,18 +95,18 @@ void add_metrics(std::string& html, const score::Score& s) {
   std::size_t found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
   row(html, "Sensitivity",
-      fmt::format("{} ({} of {} tumours found)", percent(s.sensitivity), found, s.tumours.size()));
+      fmt::format("{} ({} of {} tumours found)", score::percent_text(s.sensitivity), found, s.tumours.size()));
   row(html, "False positives", fmt::format("{}", s.false_positives));
   const double loc = mean_localization_error_mm(s);
-  row(html, "Localization error (mean)", std::isfinite(loc) ? fixed(loc, 1) + " mm" : "-");
-  row(html, "Coverage", percent(s.coverage));
-  row(html, "Deep coverage", percent(s.deep_coverage));
+  row(html, "Localization error (mean)", score::mm_text(loc));
+  row(html, "Coverage", score::percent_text(s.coverage));
+  row(html, "Deep coverage", score::percent_text(s.deep_coverage));
   row(html, "Duration", fixed(s.duration_s, 1) + " s" + (s.short_exam ? " (short exam)" : ""));
   row(html, "Contact time", fixed(s.contact_time_s, 1) + " s");
   row(html, "Time at light / medium / deep pressure", fixed(s.pressure.light_s, 1) + " / " +
                                                           fixed(s.pressure.medium_s, 1) + " / " +
                                                           fixed(s.pressure.deep_s, 1) + " s");
-  row(html, "Peak force", fixed(s.peak_force_n, 2) + " N" + (s.safe ? "" : " (over the safety limit)"));
+  row(html, "Peak force", score::force_text(s.peak_force_n) + (s.safe ? "" : " (over the safety limit)"));
   row(html, "Palpate / search force ratio", s.palpate_search_ratio > 0.0 ? fixed(s.palpate_search_ratio, 2) : "-");
   row(html, "Search pattern", score::to_string(s.pattern.kind) + " (strips " + percent(s.pattern.strip_fraction) + ", spacing " +
                                   fixed(s.pattern.strip_spacing_mm, 1) + " mm, revisits " +
@@ -136,7 +137,7 @@ void add_tumours(std::string& html, const score::Score& s) {
         "<td class=\"num\">{}</td></tr>\n",
         i + 1, esc(t.body), position_mm(t.center), mm(2.0 * t.radius), t.detectable ? "" : " (below detectable size)",
         t.found ? "ok\">yes" : "bad\">no", t.mark >= 0 ? fmt::format("{}", t.mark) : "-",
-        t.found ? fixed(t.localization_error_mm, 1) + " mm" : "-");
+        t.found ? score::mm_text(t.localization_error_mm) : "-");
   }
   html += "</table>\n";
 
@@ -173,8 +174,8 @@ void add_thresholds(std::string& html, const score::Score& s) {
   row(html, "A mark hits a tumour within", "its radius + " + mm(th.hit_margin));
   row(html, "Smallest tumour counted for sensitivity", mm(th.detectable_diameter) + " diameter");
   row(html, "False positives allowed", fmt::format("{}", th.max_false_positives));
-  row(html, "Coverage needed (expert)", percent(th.min_coverage) + " (" + percent(th.expert_coverage) + ")");
-  row(html, "Deep coverage needed", percent(th.min_deep_coverage));
+  row(html, "Coverage needed (expert)", score::percent_text(th.min_coverage) + " (" + score::percent_text(th.expert_coverage) + ")");
+  row(html, "Deep coverage needed", score::percent_text(th.min_deep_coverage));
   row(html, "Finger pad radius", mm(th.pad_radius));
   row(html, "Pressure levels (depth / thickness)",
       "light below " + fixed(th.light_max, 2) + ", deep from " + fixed(th.deep_min, 2));

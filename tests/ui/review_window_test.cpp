@@ -22,6 +22,8 @@
 #include <cmath>
 #include <memory>
 
+#include "palpa/report/session_header.hpp"
+#include "palpa/report/session_html.hpp"
 #include "palpa/score/score.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/ui/review_window.hpp"
@@ -48,6 +50,13 @@ std::unique_ptr<palpa::ui::ReviewWindow> open_review(const std::string& file) {
   auto session = palpa::session::read_session(file);
   auto score = palpa::score::score_session(session, file);
   return std::make_unique<palpa::ui::ReviewWindow>(std::move(session), std::move(score), file);
+}
+
+// The value beside a metric's name in review's table.
+QString metric(const palpa::ui::ReviewWindow& w, const QString& name) {
+  for (int r = 0; r < w.metrics_table()->rowCount(); ++r)
+    if (w.metrics_table()->item(r, 0)->text() == name) return w.metrics_table()->item(r, 1)->text();
+  return "(no " + name + " row)";
 }
 
 struct Run {
@@ -193,10 +202,43 @@ class ReviewWindowTest : public QObject {
     auto expert = open_review(kExpert);
     QCOMPARE(expert->metrics_table()->item(0, 0)->text(), QString("Result"));
     QCOMPARE(expert->metrics_table()->item(0, 1)->text(), QString("PASSED"));
-    QCOMPARE(expert->metrics_table()->item(2, 1)->text(), QString("100 %"));  // sensitivity
+    QCOMPARE(expert->metrics_table()->item(2, 1)->text(), QString("100.0%"));  // sensitivity
     auto sloppy = open_review(kSloppy);
     QCOMPARE(sloppy->metrics_table()->item(0, 1)->text(), QString("FAILED"));
     QCOMPARE(sloppy->metrics_table()->item(3, 1)->text(), QString("3"));  // false positives
+  }
+
+  // One number, one rounding (score/figures.hpp): review, the score card, palpa-cli score
+  // and the HTML report show a gate figure the same way.
+  void gateFiguresReadTheSameEverywhere() {
+    auto session = palpa::session::read_session(kSloppy);
+    auto score = palpa::score::score_session(session, kSloppy);
+    // The real session through the real CLI: review's coverage is the CLI's.
+    const QString shown = metric(*open_review(kSloppy), "Coverage");
+    QVERIFY(shown.endsWith("%"));
+    QProcess cli;
+    cli.start(PALPA_CLI_EXE, {"score", QString::fromStdString(kSloppy)});
+    QVERIFY(cli.waitForFinished(60000));
+    const QString out = QString::fromUtf8(cli.readAllStandardOutput());
+    QVERIFY2(out.contains("coverage          " + shown + " "), qPrintable(shown + " / " + out));
+    QVERIFY2(out.contains("Covered " + shown + " of the exam region"), qPrintable(out));
+    // Just under the 90% gate: 0.8995 reads 89.9% everywhere, never 90%.
+    score.coverage = 0.8995;
+    score.peak_force_n = 19.951;
+    for (auto& g : score.gates) {
+      if (g.name == "coverage") g.value = score.coverage;
+      if (g.name == "safety") g.value = score.peak_force_n;
+    }
+    const palpa::ui::ScoreCard card(score, "sloppy.palpa");
+    QVERIFY2(card.text().contains("coverage          89.9% "), qPrintable(card.text()));
+    QVERIFY2(card.text().contains("peak force        20.0 N"), qPrintable(card.text()));
+    const std::string html = palpa::report::session_html(palpa::report::header_of(session.info, kSloppy), score, {});
+    QVERIFY(html.find("<th>Coverage</th><td>89.9%</td>") != std::string::npos);
+    QVERIFY(html.find("<th>Peak force</th><td>20.0 N") != std::string::npos);
+    palpa::ui::ReviewWindow review(std::move(session), std::move(score), kSloppy);
+    QCOMPARE(metric(review, "Coverage"), QString("89.9%"));
+    QCOMPARE(metric(review, "Peak force"), QString("20.0 N"));
+    QCOMPARE(metric(review, "Gate: coverage"), QString("FAIL (89.9% / 90.0%)"));
   }
 
   void exportWritesTheReport() {

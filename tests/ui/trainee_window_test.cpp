@@ -19,7 +19,11 @@
 #include <QWindow>
 #include <QWheelEvent>
 #include <QtTest>
+#include <cmath>
+#include <fstream>
 #include <functional>
+#include <QCheckBox>
+#include <QDir>
 #include <memory>
 #include <vtkCamera.h>
 #include <vtkPoints.h>
@@ -28,6 +32,9 @@
 
 #include "palpa/io/case_file.hpp"
 #include "palpa/live/live_exercise.hpp"
+#include "palpa/score/figures.hpp"
+#include "palpa/ui/body_view.hpp"
+#include "palpa/ui/coverage_overlay.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/trainee_window.hpp"
@@ -38,14 +45,50 @@ namespace {
 
 const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
 
-std::unique_ptr<palpa::live::LiveExercise> make_exercise(const QString& session) {
+std::unique_ptr<palpa::live::LiveExercise> make_exercise(const QString& session,
+                                                         const std::string& case_path = kDefaultCase) {
   palpa::live::LiveOptions o;
   o.trainee = "ui-test";
   o.seed = 11;
   o.session_path = session.toStdString();
   o.realtime.request_fifo = false;
   o.device_settling = 0.01;
-  return std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o);
+  return std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(case_path), case_path, o);
+}
+
+/// The default case with `change` applied to its document, saved in `dir`.
+std::string changed_default_case(const QTemporaryDir& dir, const std::function<void(nlohmann::json&)>& change) {
+  std::ifstream in(kDefaultCase);
+  nlohmann::json doc = nlohmann::json::parse(in);
+  change(doc);
+  const std::string path = dir.filePath("case.json").toStdString();
+  std::ofstream(path) << doc.dump();
+  return path;
+}
+
+/// The rest top contour under (x, y) (m), seen from above.
+palpa::Vec3 skin_at(palpa::live::LiveExercise& live, double x, double y) {
+  const auto hit = live.pick(palpa::Vec3(x, y, 0.5), palpa::Vec3(0, 0, -1));
+  return hit ? hit->point : palpa::Vec3(x, y, 0.0);
+}
+
+/// Pixels near `at` (within `r`) of a colour close to `rgb`.
+int pixels_like(const QImage& image, const QPoint& at, int r, const std::array<int, 3>& rgb, int tolerance = 40) {
+  int n = 0;
+  for (int y = at.y() - r; y <= at.y() + r; ++y) {
+    for (int x = at.x() - r; x <= at.x() + r; ++x) {
+      if (!image.rect().contains(x, y)) continue;
+      const QColor c = image.pixelColor(x, y);
+      if (std::abs(c.red() - rgb[0]) + std::abs(c.green() - rgb[1]) + std::abs(c.blue() - rgb[2]) < tolerance) ++n;
+    }
+  }
+  return n;
+}
+
+QPushButton* button_named(QWidget& window, const QString& start) {
+  for (auto* b : window.findChildren<QPushButton*>())
+    if (b->text().startsWith(start)) return b;
+  return nullptr;
 }
 
 /// Lets the event loop (and the haptic thread) run until `done` or a generous deadline.
@@ -158,6 +201,11 @@ class TraineeWindowTest : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QTest::qWait(2300);  // two whole seconds of frame counting with no input
     QVERIFY2(window.frame_rate() <= 6.0, qPrintable(QString::number(window.frame_rate())));
+    // The status bar says so instead of a meaningless "4 fps".
+    QVERIFY(window.idle());
+    bool says_idle = false;
+    for (auto* l : window.findChildren<QLabel*>()) says_idle = says_idle || l->text() == "idle";
+    QVERIFY(says_idle);
     auto* view = window.view();
     const QPoint centre = window.to_view(top_over_tumour(window.exercise()));
     QElapsedTimer clock;
@@ -167,6 +215,7 @@ class TraineeWindowTest : public QObject {
       QTest::qWait(15);
     }
     qInfo("frames drawn: moving %.1f per second", window.frame_rate());
+    QVERIFY(!window.idle());
     QVERIFY2(window.frame_rate() >= 8.0, qPrintable(QString::number(window.frame_rate())));
   }
 
@@ -233,6 +282,178 @@ class TraineeWindowTest : public QObject {
              qPrintable(window.score_card()->headline()));
     QVERIFY(window.score_card()->text().contains("sensitivity"));
     QVERIFY(!finish->isEnabled());
+  }
+
+  // From the default view the pointer reaches the whole exam region of every bundled case
+  // (from the front, the crest of the default breast hid its far slope).
+  void defaultViewShowsTheWholeExamRegionOfEveryCase() {
+    const QDir cases(PALPA_SOURCE_DIR "/data/cases");
+    int tried = 0;
+    for (const QString& name : cases.entryList({"*.json"}, QDir::Files)) {
+      const std::string path = cases.filePath(name).toStdString();
+      QTemporaryDir dir;
+      palpa::ui::TraineeWindow window(make_exercise(dir.filePath("v.palpa"), path), name, false);
+      window.show();
+      QVERIFY(QTest::qWaitForWindowExposed(&window));
+      window.frame();
+      const double share = window.exam_region_view_share();
+      qInfo("%s: %.2f %% of the exam region visible and pickable from the default view", qPrintable(name),
+            100.0 * share);
+      QVERIFY2(share >= 0.99, qPrintable(name + ": " + QString::number(100.0 * share, 'f', 2) + " %"));
+      ++tried;
+    }
+    QVERIFY(tried >= 5);
+  }
+
+  // The measure can fail: from the front and above (the earlier default view, 56 degrees
+  // up), the crest of the default breast hides its far slope.
+  void theViewShareDropsWhenTheCrestHidesTheFarSlope() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("v.palpa")), "default.json", false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    palpa::ui::frame_from_front(*window.renderer(), palpa::ui::scene_bounds(window.exercise().scene()), 1.5);
+    window.frame();
+    const double share = window.exam_region_view_share();
+    qInfo("from the front (the earlier default view): %.1f %%", 100.0 * share);
+    QVERIFY2(share < 0.97, qPrintable(QString::number(share)));  // 94.5 % on a 2-core Debian 12 VM
+  }
+
+  // The overlay shows what was touched, live; its figure is the score's coverage.
+  void coverageOverlayMarksTheSweptRegionAndAgreesWithTheScore() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("sweep.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.coverage_overlay_shown());
+    auto* view = window.view();
+    auto& live = window.exercise();
+    const palpa::Vec3 swept = skin_at(live, 0.0, 0.0), untouched = skin_at(live, -0.045, 0.045);
+    const std::array<int, 3> orange = {240, 140, 30};
+    const auto colour = [](const std::array<std::uint8_t, 3>& c) { return std::array<int, 3>{c[0], c[1], c[2]}; };
+    QTest::qWait(300);
+    QVERIFY(pixels_like(view->frame(), window.to_view(swept), 6, orange) > 0);
+    // Strips 10 mm apart over x, y in [-20, 20] mm, sliding at about 40 mm/s.
+    for (int strip = 0; strip <= 4; ++strip) {
+      const double x = -0.02 + 0.01 * strip;
+      for (int k = 0; k <= 40; ++k) {
+        const double y = (strip % 2 == 0 ? -0.02 : 0.02) + (strip % 2 == 0 ? 1 : -1) * 0.001 * k;
+        move_pointer(view->input(), window.to_view(skin_at(live, x, y)));
+        QTest::qWait(25);
+      }
+    }
+    QTest::qWait(300);
+    const QImage after = view->frame();
+    QCOMPARE(pixels_like(after, window.to_view(swept), 6, orange), 0);
+    QVERIFY(pixels_like(after, window.to_view(swept), 6, colour(palpa::ui::CoverageOverlay::kColours[2])) +
+                pixels_like(after, window.to_view(swept), 6, colour(palpa::ui::CoverageOverlay::kColours[3])) > 0);
+    QVERIFY(pixels_like(after, window.to_view(untouched), 6, orange) > 0);
+    const double live_share = window.live_coverage().coverage();
+    QVERIFY(live_share > 0.05);
+    auto* figure = window.findChild<QLabel*>("liveCoverage");
+    QVERIFY(figure && figure->isVisible());
+    QVERIFY2(figure->text().contains(QString::fromStdString(palpa::score::percent_text(live_share))),
+             qPrintable(figure->text()));
+    QTest::mouseClick(button_named(window, "Finish"), Qt::LeftButton);
+    QVERIFY(window.score().has_value());
+    qInfo("live coverage %.2f %%, score %.2f %%", 100.0 * live_share, 100.0 * window.score()->coverage);
+    QVERIFY(std::abs(live_share - window.score()->coverage) <= 0.02);
+  }
+
+  // A case for an exam turns the overlay off; the key cannot turn it on.
+  void aCaseCanTurnTheOverlayOff() {
+    QTemporaryDir dir;
+    const auto path = changed_default_case(dir, [](nlohmann::json& d) { d["training"] = {{"coverage_overlay", false}}; });
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("exam.palpa"), path), "exam.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(!window.coverage_overlay_shown());
+    QTest::keyClick(window.view()->input(), Qt::Key_C);
+    QVERIFY(!window.coverage_overlay_shown());
+    QVERIFY(!window.findChild<QLabel*>("liveCoverage")->isVisible());
+    QVERIFY(!window.findChild<QCheckBox*>("coverageOverlay")->isVisible());
+    // Allowed (the default case): C turns it off and on.
+    palpa::ui::TraineeWindow training(make_exercise(dir.filePath("train.palpa")), "default.json");
+    training.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&training));
+    QVERIFY(training.coverage_overlay_shown());
+    QTest::keyClick(training.view()->input(), Qt::Key_C);
+    QVERIFY(!training.coverage_overlay_shown());
+    QTest::keyClick(training.view()->input(), Qt::Key_C);
+    QVERIFY(training.coverage_overlay_shown());
+  }
+
+  // After Finish: a hit mark green, a false one red; Mark here off, the gauge cleared; the
+  // keys work again once the score card closes.
+  void afterFinishTheMarksTellHitFromMissAndTheControlsStop() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("marks.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* view = window.view();
+    auto& live = window.exercise();
+    const palpa::Vec3 hit = top_over_tumour(live), miss = skin_at(live, -0.04, -0.03);
+    for (const auto& p : {hit, miss}) {
+      move_pointer(view->input(), window.to_view(p));
+      QVERIFY(wait_for([&] { return window.gauge()->contact().force > 1.0; }));
+      QTest::qWait(200);
+      QTest::keyClick(view->input(), Qt::Key_M);
+    }
+    QCOMPARE(live.marks().size(), std::size_t{2});
+    QTest::mouseClick(button_named(window, "Finish"), Qt::LeftButton);
+    QVERIFY(window.score().has_value());
+    QCOMPARE(window.score()->false_positives, 1);
+    QVERIFY(!button_named(window, "Mark here")->isEnabled());
+    QCOMPARE(window.gauge()->contact().force, 0.0);
+    window.frame();
+    QTest::qWait(100);
+    const QImage image = view->frame();
+    const std::array<int, 3> red = {230, 38, 38}, green = {51, 204, 77};
+    const QPoint at_hit = window.to_view(window.score()->marks[0].tumour >= 0 ? hit : miss);
+    const QPoint at_miss = window.to_view(window.score()->marks[0].tumour >= 0 ? miss : hit);
+    QVERIFY2(pixels_like(image, at_hit, 4, green, 90) > pixels_like(image, at_hit, 4, red, 90), "hit mark not green");
+    QVERIFY2(pixels_like(image, at_miss, 4, red, 90) > pixels_like(image, at_miss, 4, green, 90), "false mark not red");
+    window.score_card()->close();
+    QTRY_VERIFY(window.isActiveWindow());
+    QVERIFY(window.centralWidget()->hasFocus() || window.focusWidget() != nullptr);
+  }
+
+  // The task counts the tumours.
+  void theTaskSaysHowManyTumours() {
+    QTemporaryDir dir;
+    const auto path = changed_default_case(dir, [](nlohmann::json& d) {
+      nlohmann::json second = d["tumors"][0];
+      second["center"] = {-0.02, -0.02, 0.02};
+      second.erase("placement");
+      d["tumors"].push_back(second);
+    });
+    palpa::ui::TraineeWindow two(make_exercise(dir.filePath("two.palpa"), path), "two.json", false);
+    bool says = false;
+    for (auto* l : two.findChildren<QLabel*>()) says = says || l->text().contains("Find the 2 tumours.");
+    QVERIFY(says);
+    palpa::ui::TraineeWindow one(make_exercise(dir.filePath("one.palpa")), "default.json", false);
+    says = false;
+    for (auto* l : one.findChildren<QLabel*>()) says = says || l->text().contains("Find the tumour.");
+    QVERIFY(says);
+  }
+
+  // Ctrl+W closes the window and Ctrl+Q all of them from the view's keys, with or without a
+  // window manager.
+  void ctrlWClosesTheWindow() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("w.palpa")), "default.json", false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::keyClick(window.view()->input(), Qt::Key_W, Qt::ControlModifier);
+    QTRY_VERIFY(!window.isVisible());
+    // Ctrl+Q closes every window.
+    palpa::ui::TraineeWindow first(make_exercise(dir.filePath("q1.palpa")), "default.json", false);
+    palpa::ui::TraineeWindow second(make_exercise(dir.filePath("q2.palpa")), "default.json", false);
+    first.show();
+    second.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&second));
+    QTest::keyClick(second.view()->input(), Qt::Key_Q, Qt::ControlModifier);
+    QTRY_VERIFY(!first.isVisible() && !second.isVisible());
   }
 
   void bodiesOutOfViewAreCulled() {
@@ -324,6 +545,15 @@ class TraineeWindowTest : public QObject {
     const QStringList lines = r.err.trimmed().split('\n');
     QCOMPARE(lines.size(), 1);
     QVERIFY2(lines[0].startsWith(bad + ": line "), qPrintable(lines[0]));
+    // A session file's problem reads the same way: the file first.
+    const QString existing = dir.filePath("taken.palpa");
+    {
+      QFile f(existing);
+      QVERIFY(f.open(QIODevice::WriteOnly));
+    }
+    const Run taken = run_palpa({"--session", existing});
+    QCOMPARE(taken.code, 2);
+    QCOMPARE(taken.err.trimmed(), existing + ": file: exists (a session is never overwritten)");
     const Run mode = run_palpa({"--mode", "nonsense"});
     QCOMPARE(mode.code, 2);
     // Numbers: NaN, infinities and seeds beyond 2^64 - 1 are refused in one line naming the option.

@@ -1,6 +1,10 @@
 #include "palpa/ui/body_view.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
 #include <limits>
 
 #include <vtkCamera.h>
@@ -38,6 +42,30 @@ std::array<double, 6> scene_bounds(const scene::Scene& scene) {
     }
   }
   return bounds;
+}
+
+void frame_region(vtkRenderer& renderer, const RegionFacing& region, std::array<double, 6> bounds, double margin) {
+  auto* camera = renderer.GetActiveCamera();
+  const Vec3 n = region.normal;
+  // The picture's up: +y across the normal (+z when the normal is along y).
+  Vec3 up = Vec3::UnitY() - Vec3::UnitY().dot(n) * n;
+  if (up.norm() < 0.2) up = Vec3::UnitZ() - Vec3::UnitZ().dot(n) * n;
+  up.normalize();
+  const Vec3 right = up.cross(n);
+  const double tan_half = std::tan(0.5 * camera->GetViewAngle() * std::numbers::pi / 180.0) / margin;
+  // The nearest eye on the normal that sees every point within the (square) view cone.
+  double distance = 0.0;
+  for (const auto& p : region.points) {
+    const Vec3 d = p - region.centroid;
+    const double lateral = std::max(std::abs(d.dot(up)), std::abs(d.dot(right)));
+    distance = std::max(distance, d.dot(n) + lateral / tan_half);
+  }
+  if (!(distance > 0.0)) distance = 0.3;
+  const Vec3 eye = region.centroid + distance * n;
+  camera->SetFocalPoint(region.centroid.x(), region.centroid.y(), region.centroid.z());
+  camera->SetPosition(eye.x(), eye.y(), eye.z());
+  camera->SetViewUp(up.x(), up.y(), up.z());
+  renderer.ResetCameraClippingRange(bounds.data());
 }
 
 void frame_from_front(vtkRenderer& renderer, std::array<double, 6> bounds, double elevation, double zoom) {

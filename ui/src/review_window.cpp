@@ -1,5 +1,7 @@
 #include "palpa/ui/review_window.hpp"
 
+#include "palpa/score/figures.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -63,7 +65,6 @@ vtkSmartPointer<vtkActor> sphere(const std::array<double, 3>& centre, double rad
 
 double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
-QString percent(double fraction) { return QString::number(fraction * 100.0, 'f', 0) + " %"; }
 
 }  // namespace
 
@@ -184,19 +185,21 @@ void ReviewWindow::fill_metrics() {
   std::vector<std::pair<QString, QString>> rows;
   rows.emplace_back(tr("Result"), score_.passed ? tr("PASSED") : tr("FAILED"));
   rows.emplace_back(tr("Score"), QString::number(score_.score * 100.0, 'f', 1) + " / 100");
-  rows.emplace_back(tr("Sensitivity"), percent(score_.sensitivity));
+  rows.emplace_back(tr("Sensitivity"), QString::fromStdString(score::percent_text(score_.sensitivity)));
   rows.emplace_back(tr("False positives"), QString::number(score_.false_positives));
   QStringList errors;
-  for (double e : score_.localization_error_mm) errors << QString::number(e, 'f', 1);
-  rows.emplace_back(tr("Localization error (mm)"), errors.isEmpty() ? tr("-") : errors.join(", "));
-  rows.emplace_back(tr("Coverage"), percent(score_.coverage));
-  rows.emplace_back(tr("Deep coverage"), percent(score_.deep_coverage));
+  for (double e : score_.localization_error_mm) errors << QString::fromStdString(score::mm_text(e));
+  rows.emplace_back(tr("Localization error"), errors.isEmpty() ? tr("-") : errors.join(", "));
+  rows.emplace_back(tr("Coverage"), QString::fromStdString(score::percent_text(score_.coverage)));
+  rows.emplace_back(tr("Deep coverage"), QString::fromStdString(score::percent_text(score_.deep_coverage)));
   rows.emplace_back(tr("Duration (s)"), QString::number(score_.duration_s, 'f', 1));
-  rows.emplace_back(tr("Peak force (N)"), QString::number(score_.peak_force_n, 'f', 1));
+  rows.emplace_back(tr("Peak force"), QString::fromStdString(score::force_text(score_.peak_force_n)));
   rows.emplace_back(tr("Search pattern"), QString::fromStdString(score::to_string(score_.pattern.kind)));
   for (const auto& g : score_.gates) {
     rows.emplace_back(tr("Gate: %1").arg(QString::fromStdString(g.name)),
-                      (g.passed ? tr("pass") : tr("FAIL")) + QString(" (%1 / %2)").arg(g.value, 0, 'g', 3).arg(g.threshold, 0, 'g', 3));
+                      (g.passed ? tr("pass") : tr("FAIL")) + QString(" (%1 / %2)")
+                                                                 .arg(QString::fromStdString(score::gate_value_text(g)),
+                                                                      QString::fromStdString(score::gate_threshold_text(g))));
   }
   metrics_->setColumnCount(2);
   metrics_->setRowCount(static_cast<int>(rows.size()));

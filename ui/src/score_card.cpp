@@ -48,6 +48,20 @@ QLabel* add_map(QVBoxLayout* column, const QString& caption, cv::Mat (*draw)(con
   return map;
 }
 
+/// A legend under a map in the card's own font (the figure's legend is drawn for a page and
+/// is too small once the map is scaled to the card): coloured squares and their meaning.
+QLabel* legend(const QList<QPair<QString, QString>>& entries, QWidget* parent) {
+  QString html;
+  for (const auto& [colour, text] : entries) {
+    html += QString("<span style='color:%1; font-size:large'>&#9632;</span>&nbsp;%2 &nbsp; ").arg(colour, text);
+  }
+  auto* label = new QLabel(html, parent);
+  label->setTextFormat(Qt::RichText);
+  label->setWordWrap(true);
+  label->setMaximumWidth(ScoreCard::kMapWidth);
+  return label;
+}
+
 }  // namespace
 
 ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWidget* parent) : QDialog(parent) {
@@ -80,8 +94,14 @@ ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWi
   // The report's own figures (OpenCV): the card and the exported HTML show the same maps.
   coverage_ = add_map(maps, tr("Coverage: time spent over each part of the exam region"), &report::coverage_heatmap,
                       score, this);
+  maps->addWidget(legend({{"#440154", tr("brief")}, {"#21918c", tr("longer")}, {"#fde725", tr("longest contact")},
+                          {"#c8c8c8", tr("untouched")}},
+                         this));
   pressure_ = add_map(maps, tr("Pressure: deepest level reached (light, medium, deep)"), &report::pressure_map, score,
                       this);
+  maps->addWidget(legend({{"#c8c8c8", tr("untouched")}, {"#c6dbef", tr("light")}, {"#6baed6", tr("medium")},
+                          {"#08519c", tr("deep")}},
+                         this));
   maps->addStretch(1);
   body->addLayout(maps);
   layout->addLayout(body, 1);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include <QApplication>
 #include <QCheckBox>
 #include <QCloseEvent>
 #include <QMessageBox>
@@ -16,6 +17,7 @@
 #include <QListWidget>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QShortcut>
 #include <QStatusBar>
 #include <QVBoxLayout>
 #include <QWheelEvent>
@@ -31,6 +33,8 @@
 #include <vtkSphereSource.h>
 
 #include "palpa/render/frustum.hpp"
+#include "palpa/score/figures.hpp"
+#include "palpa/ui/coverage_overlay.hpp"
 #include "palpa/ui/body_view.hpp"
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
@@ -44,6 +48,7 @@ constexpr double kFingertipRadius = 0.006;  // m: drawn probe
 constexpr double kMinForceTarget = 1.0;     // N: force mode's range (a light touch to a firm
 constexpr double kMaxForceTarget = 15.0;    //    clinical press, below the 20 N safety gate)
 constexpr double kDefaultForceTarget = 6.0; // N
+constexpr std::array<double, 3> kMarkColour = {0.25, 0.55, 0.95};  // a mark before the score: blue
 
 vtkSmartPointer<vtkActor> sphere_actor(const palpa::Vec3& centre, double radius, double r, double g, double b) {
   vtkNew<vtkSphereSource> sphere;
@@ -100,6 +105,8 @@ TraineeWindow::TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const
   connect(remove_button_, &QPushButton::clicked, this, &TraineeWindow::remove_selected_mark);
   connect(finish_button_, &QPushButton::clicked, this, &TraineeWindow::finish);
   connect(&timer_, &QTimer::timeout, this, &TraineeWindow::frame);
+  auto* close_key = new QShortcut(QKeySequence(tr("Ctrl+W")), this);
+  connect(close_key, &QShortcut::activated, this, &QWidget::close);
 
   // Keys belong to the window, not to whichever panel widget was clicked last: the panel
   // takes no keyboard focus, the window's centre does (M and Up/Down work at once).
@@ -130,11 +137,14 @@ TraineeWindow::~TraineeWindow() = default;
 // the force mode, the marks and the finish button.
 QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_button) {
   auto* side = new QVBoxLayout;
-  auto* help = new QLabel(tr("<b>Find the tumour.</b><br>Move the pointer over the body: the finger slides "
+  const auto tumours = exercise_->placed_case().tumours.size();
+  const QString task = tumours == 1 ? tr("Find the tumour.") : tumours == 0 ? tr("Is there a tumour?")
+                                                                            : tr("Find the %1 tumours.").arg(tumours);
+  auto* help = new QLabel(tr("<b>%1</b><br>Move the pointer over the body: the finger slides "
                              "over the skin, pressing at the pressure you choose. <b>Wheel</b> or <b>Up/Down</b>: "
                              "lighter or deeper (light, medium, deep). Feel where the tissue pushes back harder "
                              "at the same pressure, then press <b>M</b> to mark the finger's spot.<br>"
-                             "Left drag turns the view, Ctrl+wheel zooms."),
+                             "Left drag turns the view, Ctrl+wheel zooms.").arg(task),
                           central);
   help->setWordWrap(true);
   side->addWidget(help);
@@ -149,6 +159,7 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   pressure_label_ = new QLabel(central);
   pressure_label_->setWordWrap(true);
   side->addWidget(pressure_label_);
+  add_coverage_controls(side, central);
   force_mode_ = new QCheckBox(tr("Press to a force instead (F)"), central);
   force_mode_->setToolTip(tr("The finger sinks until it feels the chosen force (1-15 N): over a stiff lump it "
                              "sinks less. The wheel then sets the force."));
@@ -160,6 +171,8 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   marks_list_ = new QListWidget(marks_box);
   marks_layout->addWidget(marks_list_);
   mark_button = new QPushButton(tr("Mark here (M)"), marks_box);
+  mark_button->setObjectName("markHere");
+  mark_button_ = mark_button;
   remove_button_ = new QPushButton(tr("Remove"), marks_box);
   auto* mark_buttons = new QHBoxLayout;
   mark_buttons->addWidget(mark_button);
@@ -172,6 +185,74 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   side_widget->setLayout(side);
   side_widget->setFixedWidth(300);
   return side_widget;
+}
+
+// The live coverage figure and the overlay's switch; neither when the case turns the
+// overlay off (an exam).
+void TraineeWindow::add_coverage_controls(QVBoxLayout* side, QWidget* central) {
+  training_ = io::training_from_case(exercise_->placed_case().document);
+  coverage_label_ = new QLabel(central);
+  coverage_label_->setObjectName("liveCoverage");
+  coverage_label_->setToolTip(tr("The share of the exam region your finger pad has touched so far, and of it at "
+                                 "deep pressure: what the score card will say."));
+  side->addWidget(coverage_label_);
+  overlay_box_ = new QCheckBox(tr("Show coverage on the body (C)"), central);
+  overlay_box_->setObjectName("coverageOverlay");
+  overlay_box_->setToolTip(tr("Orange: not touched yet; blue: touched at light or medium pressure only; green: "
+                              "pressed deep"));
+  overlay_box_->setChecked(training_.coverage_overlay);
+  side->addWidget(overlay_box_);
+  connect(overlay_box_, &QCheckBox::toggled, this, [this](bool on) {
+    if (overlay_) overlay_->set_visible(on && !score_);
+    request_render();
+  });
+  coverage_label_->setVisible(training_.coverage_overlay);
+  overlay_box_->setVisible(training_.coverage_overlay);
+}
+
+QString TraineeWindow::coverage_text() const {
+  if (!coverage_) return {};
+  return tr("Covered so far: %1 (deep %2)")
+      .arg(QString::fromStdString(score::percent_text(coverage_->coverage())),
+           QString::fromStdString(score::percent_text(coverage_->deep_coverage())));
+}
+
+bool TraineeWindow::coverage_overlay_shown() const { return overlay_ && overlay_->visible(); }
+
+// The snapshot's contact into the live coverage (once per snapshot); the overlay and the
+// figure follow when a cell reached a new level.
+void TraineeWindow::feed_coverage(const engine::SceneSnapshot& s) {
+  if (s.tick == fed_tick_) return;
+  fed_tick_ = s.tick;
+  if (exercise_->paused()) {
+    coverage_->lift();
+  } else {
+    coverage_->contact(s.body, s.u, s.v, s.depth);
+  }
+  if (coverage_->version() == shown_coverage_version_) return;
+  shown_coverage_version_ = coverage_->version();
+  coverage_label_->setText(coverage_text());
+  if (overlay_->sync() && overlay_->visible()) request_render();
+}
+
+double TraineeWindow::exam_region_view_share() const {
+  constexpr double kPickTolerance = 0.001;  // m: the pick lands on the point itself
+  double total = 0.0, seen = 0.0;
+  const QRect rect = view_->rect();
+  for (std::size_t b = 0; b < coverage_->bodies(); ++b) {
+    const auto& area = coverage_->areas(b);
+    const auto& centre = coverage_->centers(b);
+    for (std::size_t k = 0; k < centre.size(); ++k) {
+      if (!(area[k] > 0.0)) continue;
+      total += area[k];
+      const QPoint at = to_view(centre[k]);
+      if (!rect.contains(at)) continue;
+      const auto [near, far] = view_->pointer_ray(*renderer_, at);
+      const auto pick = exercise_->pick(near, far - near);
+      if (pick && (pick->point - centre[k]).norm() <= kPickTolerance) seen += area[k];
+    }
+  }
+  return total > 0.0 ? seen / total : 0.0;
 }
 
 void TraineeWindow::build_status_bar() {
@@ -192,9 +273,22 @@ void TraineeWindow::build_scene() {
   renderer_ = add_body_renderer(*view_, render_window_);
 
   surfaces_ = std::make_unique<BodySurfaces>(exercise_->meshes(), renderer_);
-  // From high enough (56 degrees) that the whole top contour of a dome is in view: a mouse
-  // can palpate only the skin it can point at (the far slope of the breast is 51 degrees steep).
-  frame_from_front(*renderer_, scene_bounds(exercise_->scene()), 1.5);  // the bodies, not the probe
+  // Down on the exam region along its mean skin normal: a mouse can palpate only the skin it
+  // can point at, and from the front the crest of a dome hides its far slope.
+  coverage_ = std::make_unique<live::LiveCoverage>(exercise_->scene(), exercise_->thresholds());
+  const auto bounds = scene_bounds(exercise_->scene());
+  const Vec3 middle(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]));
+  const RegionFacing region = region_facing(*coverage_, middle);
+  if (region.points.empty()) {
+    frame_from_front(*renderer_, bounds, 1.5);
+  } else {
+    frame_region(*renderer_, region, bounds);
+  }
+  double eye[3];
+  renderer_->GetActiveCamera()->GetPosition(eye);
+  overlay_ = std::make_unique<CoverageOverlay>(*coverage_, renderer_, Vec3(eye[0], eye[1], eye[2]));
+  overlay_->set_visible(training_.coverage_overlay);
+  coverage_label_->setText(coverage_text());
 
   probe_ = sphere_actor(palpa::Vec3::Zero(), kFingertipRadius, 0.85, 0.88, 0.95);
   // Opaque: one translucent actor makes VTK add its order-independent translucency passes
@@ -258,7 +352,8 @@ void TraineeWindow::place_mark() {
   // Drawn on the surface where the finger was, so it stays visible when the tissue springs back.
   palpa::Vec3 at = mark.position;
   if (picked_ && picked_->distance >= 0.0) at = picked_->point;
-  auto actor = sphere_actor(at, 0.0025, 0.85, 0.10, 0.15);
+  // Neutral until the score says which marks hit (reveal: green for a hit, red for a false mark).
+  auto actor = sphere_actor(at, 0.0025, kMarkColour[0], kMarkColour[1], kMarkColour[2]);
   renderer_->AddActor(actor);
   mark_actors_.emplace_back(mark.id, actor);
   auto* item = new QListWidgetItem(tr("Mark %1 at %2 s").arg(mark.id).arg(mark.t, 0, 'f', 1), marks_list_);
@@ -292,22 +387,35 @@ void TraineeWindow::finish() {
   }
   finish_button_->setEnabled(false);
   remove_button_->setEnabled(false);
+  mark_button_->setEnabled(false);
+  gauge_->set_contact(live::ContactInfo{});  // no finger on the body any more
+  gauge_->setEnabled(false);
+  update_status();
   emit session_ended(QString::fromStdString(exercise_->session_path().string()), true);
   reveal(*score_);
   score_card_ = new ScoreCard(*score_, QString::fromStdString(exercise_->session_path().string()), this);
   score_card_->setAttribute(Qt::WA_DeleteOnClose, false);
+  // Without a window manager nothing gives the keys back to this window when the card
+  // closes: take them back, so M, Ctrl+W and Ctrl+Q work without a click.
+  connect(score_card_, &QDialog::finished, this, [this] {
+    activateWindow();
+    raise();
+    centralWidget()->setFocus();
+  });
   score_card_->show();
 }
 
 void TraineeWindow::reveal(const score::Score& score) {
   request_render();
   surfaces_->set_opacity(0.35);
+  overlay_->set_visible(false);  // the tumours and the marks now; the score card has the maps
   for (const auto& t : score.tumours) {
     const palpa::Vec3 c(t.center[0], t.center[1], t.center[2]);
     renderer_->AddActor(t.found ? sphere_actor(c, t.radius, 0.20, 0.65, 0.25) : sphere_actor(c, t.radius, 0.75, 0.15, 0.15));
   }
   for (const auto& m : score.marks) {
     const palpa::Vec3 p(m.position[0], m.position[1], m.position[2]);
+    colour_mark(m);
     if (m.tumour >= 0) {
       const auto& t = score.tumours[static_cast<std::size_t>(m.tumour)];
       renderer_->AddActor(line_actor(p, to_vec3(t.center), 0.2, 0.8, 0.3));
@@ -323,6 +431,19 @@ void TraineeWindow::reveal(const score::Score& score) {
   }
   probe_->VisibilityOff();
   render_window_->Render();
+}
+
+void TraineeWindow::colour_mark(const score::MarkResult& m) {
+  for (const auto& [id, actor] : mark_actors_) {
+    if (id != m.id) continue;
+    if (m.tumour >= 0) {
+      actor->GetProperty()->SetColor(0.20, 0.80, 0.30);  // found a tumour: green
+    } else if (m.duplicate) {
+      actor->GetProperty()->SetColor(0.95, 0.70, 0.15);  // a tumour found already: amber
+    } else {
+      actor->GetProperty()->SetColor(0.90, 0.15, 0.15);  // a false mark: red
+    }
+  }
 }
 
 std::size_t TraineeWindow::cull_bodies() {
@@ -377,7 +498,8 @@ void TraineeWindow::frame() {
     t1 = Clock::now();
     last_frame_.bodies_changed = surfaces_->sync(exercise_->meshes());
     t2 = Clock::now();
-      const auto& s = exercise_->snapshot();
+    const auto& s = exercise_->snapshot();
+    feed_coverage(s);
     if (s.tick > 0) {
       // The fingertip rests on the dent: its centre one radius out from the probe point.
       const palpa::Vec3 n = picked_ ? picked_->normal : palpa::Vec3::UnitZ();
@@ -401,6 +523,7 @@ void TraineeWindow::frame() {
   // except a few times a second in case something changed that nothing reported.
   if (last_frame_.bodies_changed > 0) request_render();
   if (!skip_unchanged_ || render_requested_ || !since_render_.isValid() || since_render_.elapsed() >= kIdleRedrawMs) {
+    if (!skip_unchanged_ || render_requested_) ++changed_frames_;
     render_window_->Render();
     render_requested_ = false;
     since_render_.start();
@@ -412,12 +535,15 @@ void TraineeWindow::frame() {
   if (fps_clock_.elapsed() >= 1000) {
     frame_rate_ = frames_ * 1000.0 / static_cast<double>(fps_clock_.restart());
     frames_ = 0;
+    idle_ = changed_frames_ == 0;
+    changed_frames_ = 0;
     update_status();
   }
 }
 
 void TraineeWindow::update_status() {
-  status_fps_->setText(tr("%1 fps").arg(frame_rate_, 0, 'f', 0));
+  // Only the few redraws of an unchanged view: the rate says nothing, the view is idle.
+  status_fps_->setText(idle_ ? tr("idle") : tr("%1 fps").arg(frame_rate_, 0, 'f', 0));
   if (!exercise_->started()) {
     status_loop_->setText(tr("not started | device: %1").arg(QString::fromStdString(exercise_->device_name())));
     return;
@@ -435,18 +561,33 @@ void TraineeWindow::update_status() {
   status_loop_->setToolTip(QString::fromStdString(scheduling_));
 }
 
-bool TraineeWindow::handle_key(int key) {
-  switch (key) {
+bool TraineeWindow::handle_key(const QKeyEvent& event) {
+  // Ctrl+W and Ctrl+Q also without a window manager (no active window: no shortcut fires).
+  if (event.modifiers() & Qt::ControlModifier) {
+    if (event.key() == Qt::Key_W) {
+      close();
+      return true;
+    }
+    if (event.key() == Qt::Key_Q) {
+      QApplication::closeAllWindows();
+      return true;
+    }
+    return false;
+  }
+  switch (event.key()) {
     case Qt::Key_M: place_mark(); return true;
     case Qt::Key_Up: step_pressure(1); return true;
     case Qt::Key_Down: step_pressure(-1); return true;
     case Qt::Key_F: set_force_mode(force_target_ > 0.0 ? 0.0 : kDefaultForceTarget); return true;
+    case Qt::Key_C:
+      if (training_.coverage_overlay && !score_) overlay_box_->toggle();
+      return true;
     default: return false;
   }
 }
 
 void TraineeWindow::keyPressEvent(QKeyEvent* event) {
-  if (!handle_key(event->key())) QMainWindow::keyPressEvent(event);
+  if (!handle_key(*event)) QMainWindow::keyPressEvent(event);
 }
 
 bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
@@ -479,7 +620,7 @@ bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
       return true;
     }
     case QEvent::KeyPress:
-      handle_key(static_cast<QKeyEvent*>(event)->key());
+      handle_key(*static_cast<QKeyEvent*>(event));
       return true;  // no VTK key bindings (its 'q' and 'e' would end the application)
     default:
       return false;
@@ -494,10 +635,12 @@ void TraineeWindow::show_upload_state(const QString& text) {
 
 void TraineeWindow::closeEvent(QCloseEvent* event) {
   if (exercise_->started() && !exercise_->finished()) {
-    // A signal or the application quitting closes without a question: the attempt ends
-    // complete and unscored here (AppWindows marks the windows it closes that way).
+    // Closed without a question: with a reason (a signal, the window destroyed) the attempt
+    // is abandoned with it; without one (an instructor closing a Try it) it ends complete
+    // and unscored.
     const bool ask = !property(kCloseWithoutAsking).toBool();
-    switch (ask ? ask_before_closing() : CloseChoice::Finish) {
+    const QString reason = property(kCloseReason).toString();
+    switch (ask ? ask_before_closing() : reason.isEmpty() ? CloseChoice::Finish : CloseChoice::Abandon) {
       case CloseChoice::GoOn:
         event->ignore();
         return;
@@ -507,7 +650,7 @@ void TraineeWindow::closeEvent(QCloseEvent* event) {
         return;
       case CloseChoice::Abandon:
         try {
-          exercise_->abandon("the trainee closed the window");
+          exercise_->abandon(reason.isEmpty() ? "the trainee closed the window" : reason.toStdString());
         } catch (const std::exception&) {
           // The file keeps what was committed; nothing more to do on the way out.
         }

@@ -10,6 +10,7 @@
 #include "palpa/io/json_text.hpp"
 #include "palpa/mat/layer_stiffness.hpp"
 #include "palpa/io/thresholds.hpp"
+#include "palpa/io/training.hpp"
 
 namespace palpa::io {
 namespace {
@@ -536,6 +537,7 @@ CaseFile parse_case(std::string_view text, const std::string& source) {
   // "scoring" and "exam_region" (docs/scoring.md): every tool rejects a bad pass mark.
   std::vector<Problem> scoring;
   thresholds_from_case(out.document, scoring);
+  training_from_case(out.document, scoring);  // "training" (io/training.hpp)
   for (auto& p : scoring) v.add(std::move(p.where), std::move(p.reason));
   if (!v.ok()) throw CaseError(source, v.take());
   return out;

@@ -4,6 +4,7 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/case_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/csv.cpp
   ${CMAKE_CURRENT_LIST_DIR}/thresholds.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/training.cpp
 )
 
 # data_paths: the run-time lookup of the bundled data.

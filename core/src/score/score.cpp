@@ -1,4 +1,5 @@
 #include "palpa/score/score.hpp"
+#include "palpa/score/figures.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -114,7 +115,7 @@ void measure_area_and_pattern(const detail::ExamGrids& exam, const detail::Sampl
 
 void judge(const session::Session& session, const Timeline& tl, const TopPoints& tops, const detail::SamplePass& pass,
            const Thresholds& th, Score& out) {
-  out.safe = out.peak_force_n <= th.max_force;
+  out.safe = shown_force_n(out.peak_force_n) <= th.max_force + 1e-9;  // the figure shown (figures.hpp)
   out.short_exam = out.duration_s < th.min_duration;
   out.gates = detail::gates_of(out, tops.tumour_depth, th);
   out.passed = std::all_of(out.gates.begin(), out.gates.end(), [](const Gate& g) { return g.passed; });

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "palpa/score/score.hpp"
+#include "palpa/score/figures.hpp"
 
 namespace palpa::score {
 namespace {
@@ -93,21 +94,21 @@ std::string summary_text(const Score& s) {
   int found = 0;
   for (const auto& t : s.tumours) found += t.found ? 1 : 0;
   out += fmt::format("tumours found     {} of {}", found, s.tumours.size());
-  out += fmt::format(" (sensitivity {:.0f}%)\n", 100.0 * s.sensitivity);
+  out += " (sensitivity " + percent_text(s.sensitivity) + ")\n";
   out += fmt::format("false positives   {}\n", s.false_positives);
   if (!s.localization_error_mm.empty()) {
     out += "localization      ";
     for (std::size_t k = 0; k < s.localization_error_mm.size(); ++k)
-      out += fmt::format("{}{:.1f} mm", k == 0 ? "" : ", ", s.localization_error_mm[k]);
+      out += (k == 0 ? "" : ", ") + mm_text(s.localization_error_mm[k]);
     out += "\n";
   }
-  out += fmt::format("coverage          {:.0f}% (deep {:.0f}%)\n", 100.0 * s.coverage, 100.0 * s.deep_coverage);
+  out += "coverage          " + percent_text(s.coverage) + " (deep " + percent_text(s.deep_coverage) + ")\n";
   out += fmt::format("duration          {:.0f} s active, {:.0f} s in contact\n", s.duration_s, s.contact_time_s);
   const double contact = s.contact_time_s > 0 ? s.contact_time_s : 1.0;
   out += fmt::format("pressure          light {:.0f}%, medium {:.0f}%, ", 100.0 * s.pressure.light_s / contact,
                      100.0 * s.pressure.medium_s / contact);
   out += fmt::format("deep {:.0f}%\n", 100.0 * s.pressure.deep_s / contact);
-  out += fmt::format("peak force        {:.1f} N\n", s.peak_force_n);
+  out += "peak force        " + force_text(s.peak_force_n) + "\n";
   out += fmt::format("palpate/search    {:.2f}\n", s.palpate_search_ratio);
   out += "search pattern    " + to_string(s.pattern.kind);
   out += fmt::format(" (strips {:.0f}%, spacing {:.0f} mm, ", 100.0 * s.pattern.strip_fraction,

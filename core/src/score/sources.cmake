@@ -7,6 +7,7 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/timeline.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exam_grids.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sample_pass.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/figures.cpp
   ${CMAKE_CURRENT_LIST_DIR}/verdict.cpp
   ${CMAKE_CURRENT_LIST_DIR}/score.cpp
   ${CMAKE_CURRENT_LIST_DIR}/score_json.cpp

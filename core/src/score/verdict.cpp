@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "../common/numeric.hpp"
+#include "palpa/score/figures.hpp"
 
 namespace palpa::score::detail {
 namespace {
@@ -21,9 +22,8 @@ constexpr double kPatternEfficient = 1.0, kPatternThorough = 0.75, kPatternOther
 // Strips more than this many finger pads apart leave ground between them untouched.
 constexpr double kWideStripFactor = 1.25;
 
-// A share in whole percent, rounded down: 79.6 % of an area is not the 80 % a gate needs,
-// and must not read as if it were (the 1e-9 keeps 0.95, 94.99999... in binary, at 95).
-double percent_down(double share) { return std::floor(100.0 * share + 1e-9); }
+// A gate judges the figure shown (figures.hpp): 89.96 % reads 89.9 % and fails a 90 % gate.
+bool at_least(double share, double needed) { return shown_percent(share) >= shown_percent(needed); }
 
 std::string tumour_text(const TumourResult& t, double depth_m) {
   return fmt::format("the {:.0f} mm mass {:.0f} mm deep at ({:.0f}, {:.0f}, {:.0f}) mm in {}", 2000.0 * t.radius,
@@ -110,17 +110,18 @@ std::vector<Gate> gates_of(const Score& out, const std::vector<double>& tumour_d
                    double(th.max_false_positives),
                    fmt::format("{} {} matched no tumour (at most {} allowed).", out.false_positives,
                                out.false_positives == 1 ? "mark" : "marks", th.max_false_positives)});
-  gates.push_back({"coverage", out.coverage >= th.min_coverage, out.coverage, th.min_coverage,
-                   fmt::format("Covered {:.0f}% of the exam region ({:.0f}% needed).", percent_down(out.coverage),
-                               100.0 * th.min_coverage)});
-  gates.push_back({"deep_coverage", out.deep_coverage >= th.min_deep_coverage, out.deep_coverage,
+  gates.push_back({"coverage", at_least(out.coverage, th.min_coverage), out.coverage, th.min_coverage,
+                   fmt::format("Covered {} of the exam region ({} needed).", percent_text(out.coverage),
+                               percent_text(th.min_coverage))});
+  gates.push_back({"deep_coverage", at_least(out.deep_coverage, th.min_deep_coverage), out.deep_coverage,
                    th.min_deep_coverage,
-                   fmt::format("Pressed deep over {:.0f}% of the exam region ({:.0f}% needed).",
-                               percent_down(out.deep_coverage), 100.0 * th.min_deep_coverage)});
+                   fmt::format("Pressed deep over {} of the exam region ({} needed).", percent_text(out.deep_coverage),
+                               percent_text(th.min_deep_coverage))});
   gates.push_back({"safety", out.safe, out.peak_force_n, th.max_force,
-                   out.safe ? fmt::format("Peak force {:.1f} N (limit {:.1f} N).", out.peak_force_n, th.max_force)
-                            : fmt::format("Peak force {:.1f} N is above the {:.1f} N limit.", out.peak_force_n,
-                                          th.max_force)});
+                   out.safe ? fmt::format("Peak force {} (limit {}).", force_text(out.peak_force_n),
+                                          force_text(th.max_force))
+                            : fmt::format("Peak force {} is above the {} limit.", force_text(out.peak_force_n),
+                                          force_text(th.max_force))});
   return gates;
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "palpa/score/score.hpp"
@@ -92,24 +93,25 @@ TEST(ScoreCoverage, FullRasterCoversTheRegion) {
   EXPECT_TRUE(s.gates[3].passed);
 }
 
-// A coverage just short of its pass mark must not read as reaching it ("80 % of the
-// region (80 % needed)", failed): the message rounds the share down.
+// A coverage just short of its pass mark must not read as reaching it ("80.0% of the
+// region (80.0% needed)", failed): the message rounds the share down to a tenth of a percent.
 TEST(ScoreCoverage, AFailedGateNeverReadsAsReachingItsMark) {
   int tried = 0;
   for (double x = 0.0; x < 0.01; x += 0.0005) {
     const double c = stationary(x, 0.0).coverage;
-    const double percent = 100.0 * c;
-    if (percent - std::floor(percent) < 0.5) continue;  // would round down anyway
+    const double permille = 1000.0 * c;
+    if (permille - std::floor(permille) < 0.5) continue;  // would round down anyway
     ++tried;
-    const double mark = std::ceil(percent) / 100.0;  // the next whole percent: just out of reach
+    const double mark = std::ceil(permille) / 1000.0;  // the next tenth of a percent: just out of reach
     const Score s = stationary(x, 0.0, {{"scoring", {{"min_coverage", mark}}}});
     const Gate& g = s.gates[2];
     ASSERT_EQ(g.name, "coverage");
     EXPECT_FALSE(g.passed);
-    const std::string shown = "Covered " + std::to_string(static_cast<int>(std::floor(percent))) + "%";
-    EXPECT_EQ(g.message.rfind(shown, 0), 0u) << g.message << " for a coverage of " << percent << " %";
+    char shown[64];
+    std::snprintf(shown, sizeof shown, "Covered %.1f%%", std::floor(permille) / 10.0);
+    EXPECT_EQ(g.message.rfind(shown, 0), 0u) << g.message << " for a coverage of " << permille / 10.0 << " %";
   }
-  EXPECT_GT(tried, 0) << "no position gave a coverage whose percent rounds up";
+  EXPECT_GT(tried, 0) << "no position gave a coverage whose tenth of a percent rounds up";
 }
 
 TEST(ScoreCoverage, ExamRegionHalfTheBody) {

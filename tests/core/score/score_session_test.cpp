@@ -186,7 +186,7 @@ TEST(ScoreSession, GatesFailWithTheirMessages) {
   EXPECT_FALSE(gate(s, "coverage").passed);
   EXPECT_FALSE(gate(s, "deep_coverage").passed);
   EXPECT_TRUE(gate(s, "safety").passed);
-  EXPECT_NE(gate(s, "coverage").message.find("(90% needed)"), std::string::npos) << gate(s, "coverage").message;
+  EXPECT_NE(gate(s, "coverage").message.find("(90.0% needed)"), std::string::npos) << gate(s, "coverage").message;
   EXPECT_EQ(to_string(s.pattern.kind), "localized");
 }
 

@@ -7,6 +7,7 @@
 #include <vtkSmartPointer.h>
 
 #include "palpa/scene/scene.hpp"
+#include "palpa/ui/coverage_overlay.hpp"
 
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
@@ -22,6 +23,14 @@ vtkSmartPointer<vtkRenderer> add_body_renderer(VtkView& view, vtkGenericOpenGLRe
 
 /// The box around every body of the scene: xmin, xmax, ymin, ymax, zmin, zmax (m).
 std::array<double, 6> scene_bounds(const scene::Scene& scene);
+
+/// Looks down on the exam region along its mean skin normal, from as close as lets every
+/// point of it into the view with `margin` to spare (whatever the view's aspect, down to
+/// square), the picture's up the way of +y: every touchable point of the region is in
+/// view and faces the camera (the trainee's default view). `bounds`: the scene's box, for
+/// the clipping range.
+void frame_region(vtkRenderer& renderer, const RegionFacing& region, std::array<double, 6> bounds,
+                  double margin = 1.12);
 
 /// Looks at the box from the front (-y) and above (`elevation` up per unit back), zoomed in.
 void frame_from_front(vtkRenderer& renderer, std::array<double, 6> bounds, double elevation = 0.9,

@@ -22,7 +22,7 @@ class ScoreCard : public QDialog {
   QLabel* coverage_map() const { return coverage_; }
   QLabel* pressure_map() const { return pressure_; }
 
-  static constexpr int kMapWidth = 380;  ///< px
+  static constexpr int kMapWidth = 520;  ///< px: the figures' own legends stay legible
 
  private:
   QLabel* coverage_ = nullptr;

@@ -18,10 +18,14 @@
 
 #include <vtkSmartPointer.h>
 
+#include "palpa/io/training.hpp"
+#include "palpa/live/live_coverage.hpp"
 #include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
 class QCheckBox;
+class QKeyEvent;
+class QVBoxLayout;
 class QLabel;
 class QListWidget;
 class QPushButton;
@@ -35,6 +39,7 @@ class VtkView;
 
 class ForceGauge;
 class ScoreCard;
+class CoverageOverlay;
 
 class TraineeWindow : public QMainWindow {
   Q_OBJECT
@@ -42,6 +47,10 @@ class TraineeWindow : public QMainWindow {
   /// A dynamic property: set it true on the window before closing it to close without the
   /// question (a signal, the application quitting); the attempt then ends complete.
   static constexpr const char* kCloseWithoutAsking = "palpaCloseWithoutAsking";
+  /// A dynamic property (a string): with kCloseWithoutAsking, a running attempt is abandoned
+  /// with this reason ("SIGTERM", "window destroyed": the End note "abandoned: SIGTERM")
+  /// instead of ending complete.
+  static constexpr const char* kCloseReason = "palpaCloseReason";
   /// Takes the exercise; starts it (session recording, haptic loop) unless `start` is false
   /// (a screenshot needs no session). Throws what LiveExercise::start throws.
   TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const QString& case_name, bool start = true,
@@ -68,6 +77,23 @@ class TraineeWindow : public QMainWindow {
   const std::optional<score::Score>& score() const { return score_; }
   /// Frames drawn per second over the last second.
   double frame_rate() const { return frame_rate_; }
+  /// The live coverage of the exam region (live_coverage.hpp): coverage() and
+  /// deep_coverage() as the score measures them, fed from every snapshot.
+  const live::LiveCoverage& live_coverage() const { return *coverage_; }
+  /// The figure in the side panel (objectName "liveCoverage"), e.g. "Covered so far: 45.3%
+  /// (deep 12.0%)", rounded like the score card (score/figures.hpp).
+  QString coverage_text() const;
+  /// The coverage overlay is drawn on the body now (checkbox "coverageOverlay", key C;
+  /// never when the case's "training" turns it off).
+  bool coverage_overlay_shown() const;
+  /// The case's "training" options (the overlay allowed or not).
+  const io::TrainingOptions& training() const { return training_; }
+  /// The share (0..1, area-weighted) of the exam region that the pointer can reach from the
+  /// current view: each cell centre of the score's grid projected to the view and picked
+  /// back through the window's own picking lands within 1 mm of itself.
+  double exam_region_view_share() const;
+  /// The last second drew nothing that changed (the status bar says "idle").
+  bool idle() const { return idle_; }
 
   /// Where the last frame() spent its time (s), for palpa --bench: taking the snapshot and
   /// re-tessellating changed bodies, copying them into VTK, and VTK's render.
@@ -115,13 +141,18 @@ class TraineeWindow : public QMainWindow {
  private:
   QWidget* build_side_panel(QWidget* central, QPushButton*& mark_button);
   void build_status_bar();
+  void add_coverage_controls(QVBoxLayout* side, QWidget* central);
+  void feed_coverage(const engine::SceneSnapshot& snapshot);
   void build_scene();
   void update_status();
   void reveal(const score::Score& score);
   enum class CloseChoice { FinishAndScore, Abandon, GoOn, Finish };
   /// The question on closing a running exercise (objectName "closeQuestion").
   CloseChoice ask_before_closing();
-  bool handle_key(int key);
+  /// M, Up/Down, F; Ctrl+W closes the window, Ctrl+Q all windows.
+  bool handle_key(const QKeyEvent& event);
+  /// After the score: a mark that found a tumour green, a duplicate amber, a false one red.
+  void colour_mark(const score::MarkResult& mark);
   void apply_pressure();
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
   /// box grown by a margin for deformation); returns how many are visible.
@@ -135,6 +166,7 @@ class TraineeWindow : public QMainWindow {
   QListWidget* marks_list_ = nullptr;
   QPushButton* remove_button_ = nullptr;
   QPushButton* finish_button_ = nullptr;
+  QPushButton* mark_button_ = nullptr;
   QLabel* status_loop_ = nullptr;
   QLabel* status_fps_ = nullptr;
   QLabel* status_upload_ = nullptr;
@@ -142,11 +174,20 @@ class TraineeWindow : public QMainWindow {
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> render_window_;
   vtkSmartPointer<vtkRenderer> renderer_;
   std::unique_ptr<BodySurfaces> surfaces_;
+  std::unique_ptr<live::LiveCoverage> coverage_;
+  std::unique_ptr<CoverageOverlay> overlay_;
+  io::TrainingOptions training_;
+  QLabel* coverage_label_ = nullptr;
+  QCheckBox* overlay_box_ = nullptr;
+  std::uint64_t fed_tick_ = 0;
+  std::uint64_t shown_coverage_version_ = 0;
   vtkSmartPointer<vtkActor> probe_;
   std::vector<std::pair<std::int64_t, vtkSmartPointer<vtkActor>>> mark_actors_;
   QTimer timer_;
   QElapsedTimer fps_clock_;
   int frames_ = 0;
+  int changed_frames_ = 0;  ///< frames drawn in this second because something changed
+  bool idle_ = false;       ///< the last second drew only the idle redraws
   double frame_rate_ = 0.0;
   FrameTimes last_frame_;
   /// The next frame() draws (something changed); otherwise an unchanged scene is redrawn
