@@ -61,7 +61,10 @@ Sample Engine::tick(double t, bool overrun, bool hold_fault) noexcept {
   }
   const Vec3 force = governor_.govern(requested, dt, s.fault);
   s.force = to_array(force);
-  if (device_->write_force(force) != DeviceStatus::Ok) s.fault = true;
+  const bool write_failed = device_->write_force(force) != DeviceStatus::Ok;
+  if (write_failed) s.fault = true;
+  touch_.device_fault = status != DeviceStatus::Ok || write_failed;
+  touch_.stall = false;  // the loop says so
   touch_.sample = s;
   touch_.dynamics = options_.dynamics;
   return s;

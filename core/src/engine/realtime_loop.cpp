@@ -81,6 +81,7 @@ void RealtimeLoop::run_display() {
   std::uint64_t last_tick = 0;
   Touch touch;
   Sample last;
+  LoopEvents events;
   for (;;) {
     const bool stopping = display_stop_.load(std::memory_order_acquire);  // before draining: nothing is missed
     bool took = false;
@@ -90,8 +91,9 @@ void RealtimeLoop::run_display() {
       drawn_.follow(touch, static_cast<int>(gap));
       last_tick = touch.tick;
       last = touch.sample;
+      events.note(touch);
       if (++since_snapshot >= every) {
-        snapshots_.write_slot().capture(drawn_, last, last_tick);
+        snapshots_.write_slot().capture(drawn_, last, last_tick, events);
         snapshots_.publish();
         since_snapshot = 0;
       }
@@ -102,7 +104,7 @@ void RealtimeLoop::run_display() {
     }
   }
   if (since_snapshot > 0) {  // the final state, so the GUI shows where the finger stopped
-    snapshots_.write_slot().capture(drawn_, last, last_tick);
+    snapshots_.write_slot().capture(drawn_, last, last_tick, events);
     snapshots_.publish();
   }
 }
@@ -170,7 +172,6 @@ void RealtimeLoop::run_haptic_loop() {
   clock_gettime(CLOCK_MONOTONIC, &origin);
   timespec deadline = origin;
   double previous_start = -1.0;
-  double fault_until = -1.0;   // a stall or a stop keeps the fault (force ramping to 0) until then
   double stop_at = -1.0;
   int since_publish = 0;
   std::uint64_t tick_number = 0;
@@ -182,17 +183,19 @@ void RealtimeLoop::run_haptic_loop() {
     clock_gettime(CLOCK_MONOTONIC, &now);
     const double start = seconds(now) - seconds(origin);
     const double due = seconds(deadline) - seconds(origin);
-    const bool overrun = start - due > 0.5 * period;
-    // Watchdog: a tick that comes far too late means the loop stalled; whatever force it
-    // would send now is stale, so ramp to zero from there.
-    if (previous_start >= 0.0 && start - previous_start > watchdog) fault_until = start + ramp;
+    // Watchdog: a tick far too late means the loop stalled (a loaded machine, a blocked
+    // driver). That is not a device fault: the tick computes the force afresh from where
+    // the device is now (the governor's rate limit still applies) and is marked overrun.
+    const bool stall = previous_start >= 0.0 && start - previous_start > watchdog;
+    const bool overrun = stall || start - due > 0.5 * period;
     if (stop_requested_.load(std::memory_order_acquire) && stop_at < 0.0) stop_at = start + ramp;
     apply_commands();
-    const bool fault = paused_.load(std::memory_order_acquire) || start < fault_until || stop_at >= 0.0;
+    const bool fault = paused_.load(std::memory_order_acquire) || stop_at >= 0.0;
 
     const Sample s = engine_->tick(start, overrun, fault);
     Touch touch = engine_->last_touch();
     touch.tick = ++tick_number;
+    touch.stall = stall;
     if (!touches_.try_push(touch)) dropped_touches_.fetch_add(1, std::memory_order_relaxed);
     if (!samples_.try_push(s)) dropped_.fetch_add(1, std::memory_order_relaxed);
 

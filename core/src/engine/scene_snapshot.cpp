@@ -15,7 +15,8 @@ SceneSnapshot SceneSnapshot::sized_for(const DrawnScene& drawn) {
   return s;
 }
 
-void SceneSnapshot::capture(const DrawnScene& scene, const Sample& last, std::uint64_t tick_number) {
+void SceneSnapshot::capture(const DrawnScene& scene, const Sample& last, std::uint64_t tick_number,
+                            const LoopEvents& loop_events) {
   tick = tick_number;
   t = last.t;
   probe = last.position;
@@ -24,6 +25,8 @@ void SceneSnapshot::capture(const DrawnScene& scene, const Sample& last, std::ui
   u = last.u;
   v = last.v;
   depth = last.depth;
+  fault = last.fault;
+  events = loop_events;
   double sum = 0.0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const auto& drawn = scene.drawn(b);

@@ -2,6 +2,7 @@
 target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/virtual_device.cpp
   ${CMAKE_CURRENT_LIST_DIR}/fallback_device.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/stalling_device.cpp
   ${CMAKE_CURRENT_LIST_DIR}/force_governor.cpp
   ${CMAKE_CURRENT_LIST_DIR}/engine.cpp
   ${CMAKE_CURRENT_LIST_DIR}/loop_stats.cpp

@@ -23,7 +23,31 @@ io::Thresholds thresholds_of(const io::CaseFile& placed, const std::string& sour
   return thresholds;
 }
 
+engine::Device& engine_device(engine::FallbackDevice& fallback, std::unique_ptr<engine::StallingDevice>& stalling,
+                              const LiveOptions& options) {
+  if (options.inject_stalls) stalling = std::make_unique<engine::StallingDevice>(fallback, *options.inject_stalls);
+  return stalling ? static_cast<engine::Device&>(*stalling) : fallback;
+}
+
+// The follower predicts its force bound with the probe the engine's tick runs.
+FollowerOptions follower_options(const LiveOptions& options, const io::Thresholds& thresholds) {
+  FollowerOptions f;
+  f.force_bound = force_bound(thresholds);
+  f.probe = options.engine.probe;
+  f.probe.force.shear = options.engine.shear;
+  return f;
+}
+
 }  // namespace
+
+const char* to_string(LoopState state) {
+  switch (state) {
+    case LoopState::Stalled: return "haptic loop stalled";
+    case LoopState::Fault: return "device fault";
+    case LoopState::Ok: break;
+  }
+  return "";
+}
 
 LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_source, const LiveOptions& options)
     : options_(options),
@@ -35,11 +59,12 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       primary_(options.device),
       // Held at least twice the ramp time, so the force is at zero before the virtual device takes over.
       fallback_(primary_.get(), device_, 2.0 * options.engine.safety.ramp_time),
-      engine_(std::make_unique<engine::Engine>(*scene_, fallback_, options.engine)),
+      engine_(std::make_unique<engine::Engine>(*scene_, engine_device(fallback_, stalling_, options), options.engine)),
       loop_(std::make_unique<engine::RealtimeLoop>(*engine_, options.realtime)),
       meshes_(*scene_, options.engine.deform, options.tessellation),
       picker_(*scene_),
-      follower_(*scene_) {
+      follower_(*scene_, follower_options(options, thresholds_)),
+      stiffness_state_(scene_->make_state()) {
   if (options_.trainee.empty()) throw std::invalid_argument("trainee id must not be empty");
   // Start the probe well above the first body, so that the first ticks touch nothing.
   if (scene_->size() > 0) {
@@ -100,7 +125,9 @@ void LiveExercise::follow() {
   last_follow_ = now;
   const auto& s = loop_->snapshot();
   const double felt = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
-  const auto target = follower_.advance(dt, felt);
+  // A stalled or faulted loop reports a stale or zero force: the finger waits.
+  const bool hold = s.fault || loop_state() != LoopState::Ok;
+  const auto target = follower_.advance(dt, felt, hold);
   if (!target || (primary_ && !switch_seen_)) return;
   device_.set_target(*target);
 }
@@ -108,16 +135,37 @@ void LiveExercise::follow() {
 bool LiveExercise::update() {
   handle_device_switch();
   const bool fresh = loop_->update_snapshot();
+  if (fresh) last_fresh_ = std::chrono::steady_clock::now();
   follow();
   if (!fresh) return false;
   meshes_.update(loop_->snapshot());
   return true;
 }
 
+LoopState LiveExercise::loop_state() const {
+  const auto& s = loop_->snapshot();
+  const auto& e = s.events;
+  if (e.last_device_fault >= 0.0 && s.t - e.last_device_fault < kLoopStateHold) return LoopState::Fault;
+  if (e.last_stall >= 0.0 && s.t - e.last_stall < kLoopStateHold) return LoopState::Stalled;
+  // No snapshot for longer than the watchdog allows (they come every 8 ms): stalled now.
+  const double stale = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_fresh_).count();
+  const double late = options_.engine.safety.watchdog_timeout + 2.0 / std::max(1.0, options_.realtime.snapshot_rate);
+  if (started_ && !finished_ && last_fresh_ != std::chrono::steady_clock::time_point{} && stale > late) {
+    return LoopState::Stalled;
+  }
+  return LoopState::Ok;
+}
+
 ContactInfo LiveExercise::contact() const {
   const auto& s = loop_->snapshot();
   ContactInfo c;
   c.force = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
+  c.loop = loop_state();
+  c.force_mode = follower_.force_target() > 0.0;
+  c.force_target = follower_.force_target();
+  c.force_bound = follower_.force_bound();
+  c.safety_limit = thresholds_.max_force;
+  c.at_force_bound = following_ && follower_.on_body() && follower_.at_force_bound();
   if (s.body < 0 || static_cast<std::size_t>(s.body) >= scene_->size() || !(s.depth > 0.0)) return c;
   c.body = s.body;
   c.depth = s.depth;
@@ -127,6 +175,10 @@ ContactInfo LiveExercise::contact() const {
   c.thickness = 2.0 * std::max(0.0, sk[3]);
   c.fraction = c.thickness > 0.0 ? c.depth / c.thickness : 1.0;
   c.level = level_of(c.fraction, thresholds_);
+  scene::ProbeOptions fresh = options_.engine.probe;
+  fresh.remember_side = false;
+  fresh.force.shear = false;  // the tissue's answer to pressing, not to sliding
+  c.stiffness = tangent_stiffness(*scene_, stiffness_state_, fresh, static_cast<std::size_t>(s.body), s.u, s.v, s.depth);
   return c;
 }
 

@@ -21,6 +21,8 @@ PressureLevel level_of(double fraction, const io::Thresholds& thresholds) {
   return fraction >= thresholds.deep_min ? PressureLevel::Deep : PressureLevel::Medium;
 }
 
+double force_bound(const io::Thresholds& thresholds) { return kForceBoundShare * thresholds.max_force; }
+
 PressureDial::PressureDial(const io::Thresholds& thresholds, int index) : thresholds_(thresholds) {
   set_index(index);
 }
@@ -68,8 +70,22 @@ SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v) {
   return f;
 }
 
+double tangent_stiffness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
+                         std::size_t body, double u, double v, double depth, double step) {
+  const auto frame = surface_frame(scene.body(body).body, u, v);
+  const auto force_at = [&](double d) {
+    std::fill(state.warm.begin(), state.warm.end(), 0);
+    state.held = -1;
+    return scene.probe(frame.top - d * frame.normal, state, options).force.total.norm();
+  };
+  const double lo = std::max(0.0, depth - step), hi = depth + step;
+  return (force_at(hi) - force_at(lo)) / (hi - lo);
+}
+
 SurfaceFollower::SurfaceFollower(const scene::Scene& scene, const FollowerOptions& options)
-    : scene_(&scene), options_(options) {}
+    : scene_(&scene), options_(options), probe_state_(scene.make_state()) {
+  options_.probe.remember_side = false;  // every bound probe is a fresh press
+}
 
 void SurfaceFollower::aim(const std::optional<render::SurfacePick>& pick) {
   if (!pick || pick->body >= scene_->size()) {
@@ -122,9 +138,42 @@ void SurfaceFollower::walk(double dt) {
   v_ += f * (aim_v_ - v_);
 }
 
-double SurfaceFollower::desired_press(double dt, double felt) {
+double SurfaceFollower::force_at_share(double u, double v, double share) const {
+  const auto frame = surface_frame(scene_->body(body_).body, u, v);
+  const Vec3 q = frame.top - share * frame.thickness * frame.normal;
+  std::fill(probe_state_.warm.begin(), probe_state_.warm.end(), 0);
+  probe_state_.held = -1;
+  return scene_->probe(q, probe_state_, options_.probe).force.total.norm();
+}
+
+double SurfaceFollower::bounded_share(double u, double v, double want) const {
+  const double bound = options_.force_bound;
+  if (!(bound > 0.0) || want <= 0.0 || force_at_share(u, v, want) <= bound) return want;
+  double lo = 0.0, hi = want;  // f(lo) <= bound < f(hi)
+  while (hi - lo > 1e-4) {
+    const double mid = 0.5 * (lo + hi);
+    (force_at_share(u, v, mid) <= bound ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// The share to press to, at most where the model's force reaches the bound: at the finger's
+// new spot and halfway from where it was (a slide onto a lump must not overshoot between
+// frames). The follower sees the engine's force only at the GUI's rate, so the bound is
+// predicted from the model, and a force felt above it backs the finger off.
+double SurfaceFollower::bound_press(double want, double felt, double from_u, double from_v) {
+  bounded_ = false;
+  if (!(options_.force_bound > 0.0) || want <= 0.0) return want;
+  double cap = bounded_share(u_, v_, want);
+  cap = std::min(cap, bounded_share(0.5 * (u_ + from_u), 0.5 * (v_ + from_v), want));
+  if (felt > options_.force_bound && press_ > 0.0) cap = std::min(cap, press_ * options_.force_bound / felt);
+  bounded_ = cap < want - 1e-3;
+  return std::min(want, cap);
+}
+
+double SurfaceFollower::desired_press(double dt, double felt, bool hold) {
   if (!aimed_on_body_ || aim_body_ != body_) return -1.0;
-  if (force_target_ > 0.0 && press_ >= 0.0) {
+  if (force_target_ > 0.0 && press_ >= 0.0 && !hold) {
     // Integral control of the share on the force error, scaled by the local tissue's own
     // stiffness (a stiffer spot answers the same share with more force: it sinks less).
     const auto frame = surface_frame(scene_->body(body_).body, u_, v_);
@@ -135,17 +184,27 @@ double SurfaceFollower::desired_press(double dt, double felt) {
   return share_;
 }
 
-std::optional<Vec3> SurfaceFollower::advance(double dt, double felt) {
+std::optional<Vec3> SurfaceFollower::advance(double dt, double felt, bool hold) {
   if (!started_) return std::nullopt;
   dt = std::clamp(std::isfinite(dt) ? dt : 0.0, 0.0, 0.1);
+  const double from_u = u_, from_v = v_;
+  const std::size_t from_body = body_;
   walk(dt);
-  const double want = desired_press(dt, felt);
+  double want = desired_press(dt, felt, hold);
+  if (want >= 0.0) {
+    want = bound_press(want, felt, body_ == from_body ? from_u : u_, body_ == from_body ? from_v : v_);
+  } else {
+    bounded_ = false;
+  }
+  if (force_target_ > 0.0 && bounded_) share_ = std::min(share_, want);  // no wind-up at the bound
+  if (hold) want = std::min(want, std::max(press_, 0.0));  // stalled or faulted: never deeper
   // In the air (press < 0) the finger moves at the lift rate, in the tissue at the press rate.
   const double rate = (press_ < 0.0 || want < 0.0) && !(press_ > 0.0) ? options_.lift_rate
                       : want < press_                                  ? options_.release_rate
                                                                        : options_.press_rate;
   const double step = rate * dt;
   press_ += std::clamp(want - press_, -step, step);
+  at_bound_ = bounded_ && press_ >= want - 1e-3;  // arrived at the bound, not on the way to it
   const auto frame = surface_frame(scene_->body(body_).body, u_, v_);
   // A share of the thickness under the skin, or a lift above it: never past the support.
   const double offset = press_ >= 0.0 ? -press_ * frame.thickness : -press_ * options_.lift;

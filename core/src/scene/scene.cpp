@@ -9,6 +9,16 @@
 
 namespace palpa::scene {
 
+Bounds probe_box_of(const mat::MatBody& body, const Bounds& bounds) {
+  if (!body.anchored()) return bounds;
+  // A support's wall goes on below the bottom contour: the box takes it in, whichever way
+  // the body faces.
+  Bounds b = bounds;
+  b.lo.array() -= kSupportReach;
+  b.hi.array() += kSupportReach;
+  return b;
+}
+
 bool Bounds::contains(const Vec3& q) const {
   return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
 }
@@ -81,11 +91,13 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       auto body = mat::MatBody::fit(file.bodies[k], options);
       contact::FootPointSearch search(body.skeleton());
       const auto bounds = bounds_of(body);
+      const auto probe_box = probe_box_of(body, bounds);
       const auto& grid = file.bodies[k];
       std::optional<mat::LayerStiffnessTable> layer;
       if (!grid.modulus.empty()) layer.emplace(grid.poisson, mat::kFingertipPadRadius);
       scene.bodies_.push_back(
-          {std::move(body), std::move(search), bounds, {}, grid.force_model, layer, grid.poisson, grid.stiffening});
+          {std::move(body), std::move(search), bounds, probe_box, {}, grid.force_model, layer, grid.poisson,
+           grid.stiffening});
     } catch (const mat::FitError& e) {
       problems.push_back({fmt::format("/bodies/{}", k), std::string("cannot fit: ") + e.what()});
     }
@@ -146,7 +158,7 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
   bool held_chosen = false;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const SceneBody& sb = bodies_[b];
-    if (!sb.bounds.contains(q)) {
+    if (!sb.probe_box.contains(q)) {
       state.warm[b] = 0;  // the next entry into this body starts cold
       state.entry_side[b] = 0;
       continue;

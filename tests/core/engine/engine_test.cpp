@@ -77,6 +77,30 @@ TEST(ForceGovernor, AFaultRampsToZeroWithinTheRampTimeAndNaNIsNeverPassedOn) {
   EXPECT_EQ(h.govern(Vec3(std::nan(""), 0, 0), 1e-3, false), Vec3::Zero());
 }
 
+// Back from a fault the force rises no faster than the ramp (cap / ramp_time), not at the
+// full rate limit, up to what is asked and no further; then the rate limit is back.
+TEST(ForceGovernor, AfterAFaultTheForceComesBackAtTheRamp) {
+  SafetyOptions o;  // 30 N cap, 5000 N/s, 50 ms ramp: 600 N/s back from a fault
+  ForceGovernor g(o, 30.0);
+  for (int k = 0; k < 10; ++k) (void)g.govern(Vec3(0, 0, 15), 1e-3, false);
+  ASSERT_NEAR(g.last().z(), 15.0, 1e-12);
+  for (int k = 0; k < 10; ++k) (void)g.govern(Vec3(0, 0, 15), 1e-3, true);
+  ASSERT_EQ(g.last().norm(), 0.0);
+  const double ramp_step = 30.0 / 0.05 * 1e-3;  // N per 1 ms tick
+  double previous = 0.0;
+  int ticks = 0;
+  while (g.last() != Vec3(0, 0, 15)) {  // the last step lands on the request exactly
+    const double now = g.govern(Vec3(0, 0, 15), 1e-3, false).z();
+    EXPECT_LE(now - previous, ramp_step + 1e-12);
+    EXPECT_LE(now, 15.0 + 1e-12);
+    previous = now;
+    ASSERT_LT(++ticks, 1000);
+  }
+  EXPECT_NEAR(ticks, 25, 1);  // 15 N at 0.6 N per tick
+  // Recovered: the normal rate limit (5 N per tick) again.
+  EXPECT_NEAR(g.govern(Vec3(0, 0, 25), 1e-3, false).z(), 20.0, 1e-12);
+}
+
 TEST(VirtualDevice, FollowsItsTargetSmoothlyWithoutOvershoot) {
   VirtualDevice d(0.03);
   DevicePose pose;

@@ -40,8 +40,8 @@ struct Sample {
   double v = 0.0;
   double depth = 0.0;          ///< m, penetration (0 when not in contact)
   std::uint32_t buttons = 0;
-  bool overrun = false;        ///< the tick started after its deadline
-  bool fault = false;          ///< device error, stall, pause: the force is ramping to zero
+  bool overrun = false;        ///< the tick started after its deadline (also: after a stall of the loop)
+  bool fault = false;          ///< device error, pause, stop: the force is ramping to zero
 };
 
 /// What the drawn bodies need from one tick to follow the finger (DrawnScene::follow): the
@@ -53,6 +53,8 @@ struct Touch {
   std::array<double, 3> outward{0.0, 0.0, 1.0};  ///< contact::Contact::outward
   std::int8_t side = 1;    ///< contact::Contact::side
   bool inside = false;     ///< the probe is in body sample.body (contact::Contact::inside)
+  bool device_fault = false;  ///< the device read or write failed (not a pause or a stop)
+  bool stall = false;      ///< the tick came after a stall of the loop (RealtimeLoop's watchdog)
   bool dynamics = true;    ///< EngineOptions::dynamics at this tick (it can change between ticks)
 };
 
@@ -64,7 +66,7 @@ class Engine {
   Engine(const scene::Scene& scene, Device& device, const EngineOptions& options = {});
 
   /// One tick at time t (s). `overrun` is recorded in the sample; `hold_fault` (pause,
-  /// shutdown, watchdog) ramps the force to zero like a device error.
+  /// shutdown) ramps the force to zero like a device error.
   Sample tick(double t, bool overrun = false, bool hold_fault = false) noexcept;
 
   /// The last tick's Touch (tick number 0: the RealtimeLoop numbers them).

@@ -17,6 +17,7 @@
 
 #include "palpa/engine/fallback_device.hpp"
 #include "palpa/engine/realtime_loop.hpp"
+#include "palpa/engine/stalling_device.hpp"
 #include "palpa/engine/virtual_device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/scene/scene.hpp"
@@ -48,12 +49,23 @@ struct LiveOptions {
   /// its last pose; the session goes on (see device_switched()).
   std::shared_ptr<engine::Device> device;
   double device_scale = 1.0;
+  /// Fault injection for tests and acceptance runs only: wraps the device the engine reads
+  /// (the virtual device behind the pointer, or the chosen one) in an engine::StallingDevice
+  /// that stalls the haptic loop 20-50 ms in bursts and now and then faults. Unset: none.
+  std::optional<engine::StallOptions> inject_stalls;
   double commit_interval = 0.25;      ///< s between session commits
   render::TessellationOptions tessellation{};
 };
 
 // PressureLevel (press_control.hpp): indentation over the local tissue thickness 2R, with
 // the case's score::Thresholds (light below light_max, deep from deep_min): the score's levels.
+
+/// The haptic loop as the trainee should hear of it: running, stalled (late ticks: the
+/// machine was busy; the force is held, not dropped) or faulted (the device failed: the
+/// force ramps to zero). Each lasts while it does plus LiveExercise::kLoopStateHold.
+enum class LoopState : std::uint8_t { Ok, Stalled, Fault };
+/// "", "haptic loop stalled", "device fault".
+const char* to_string(LoopState state);
 
 struct ContactInfo {
   int body = -1;             ///< contacted body, -1 when none
@@ -62,6 +74,15 @@ struct ContactInfo {
   double thickness = 0.0;    ///< m, local tissue thickness 2R at the contact
   double fraction = 0.0;     ///< depth / thickness
   PressureLevel level = PressureLevel::None;
+  /// N/m: the model's tangent stiffness dF/dd here at this depth (tangent_stiffness()); 0
+  /// without contact.
+  double stiffness = 0.0;
+  bool force_mode = false;   ///< the finger presses to a force (force_target), not a share
+  double force_target = 0.0; ///< N, in force mode
+  bool at_force_bound = false;  ///< the press is held at force_bound (SurfaceFollower::at_force_bound)
+  double force_bound = 0.0;  ///< N: where presses stop, kForceBoundShare of safety_limit
+  double safety_limit = 0.0; ///< N: the case's safety gate (Thresholds::max_force)
+  LoopState loop = LoopState::Ok;
 };
 
 struct LiveMark {
@@ -110,8 +131,16 @@ class LiveExercise {
   std::optional<render::SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
     return picker_.pick(origin, direction);
   }
-  /// The contact of the last snapshot taken by update().
+  /// The contact of the last snapshot taken by update(), with the loop's state.
   ContactInfo contact() const;
+  /// s of haptic time a stall or fault is still reported after it ended, so that a 60 Hz
+  /// GUI shows a 20 ms stall.
+  static constexpr double kLoopStateHold = 0.25;
+  /// The loop's state as of the last update(): a device fault in the last kLoopStateHold,
+  /// else a stall in it (or no snapshot for a while: the loop is stalled now), else Ok.
+  LoopState loop_state() const;
+  /// The fault-injection device, when LiveOptions::inject_stalls asked for one (else null).
+  const engine::StallingDevice* stalling_device() const { return stalling_.get(); }
 
   /// Marks the current probe position (a Mark event); returns the mark. Throws
   /// std::logic_error unless started and not finished.
@@ -166,6 +195,7 @@ class LiveExercise {
   engine::VirtualDevice device_;
   std::shared_ptr<engine::Device> primary_;
   engine::FallbackDevice fallback_;
+  std::unique_ptr<engine::StallingDevice> stalling_;  // around fallback_, when injecting
   std::unique_ptr<engine::Engine> engine_;
   std::unique_ptr<engine::RealtimeLoop> loop_;
   std::unique_ptr<session::SessionWriter> writer_;
@@ -175,6 +205,8 @@ class LiveExercise {
   SurfaceFollower follower_;
   bool following_ = false;                        // aim() drives the probe target
   std::chrono::steady_clock::time_point last_follow_{};
+  std::chrono::steady_clock::time_point last_fresh_{};  // when update() last got a snapshot
+  mutable scene::ProbeState stiffness_state_;           // contact()'s fresh probes
   std::vector<LiveMark> marks_;
   std::int64_t next_mark_ = 1;
   mutable double last_event_t_ = 0.0;

@@ -23,6 +23,13 @@ const char* to_string(PressureLevel level);
 /// The level a press of `fraction` of the local thickness counts as (the score's bands).
 PressureLevel level_of(double fraction, const io::Thresholds& thresholds);
 
+/// The finger stops at this share of the case's safety gate (Thresholds::max_force) wherever
+/// a dial setting or a force target would take it further: the gate and the steps are read
+/// from the same thresholds, so they cannot disagree.
+inline constexpr double kForceBoundShare = 0.9;
+/// N: kForceBoundShare of the case's max_force.
+double force_bound(const io::Thresholds& thresholds);
+
 /// Nine settings, three per level, from the lightest light to the deepest deep.
 class PressureDial {
  public:
@@ -59,6 +66,13 @@ struct SurfaceFrame {
 };
 SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v);
 
+/// N/m: the model's tangent stiffness dF/dd at skeleton point (u, v) of `body` and depth
+/// `depth` (m), what a finger feels pressing a little further: central difference of fresh
+/// probes at depth +- `step` along the skeleton normal (one-sided near the skin). For the
+/// GUI thread (it probes the rest scene with its own state).
+double tangent_stiffness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
+                         std::size_t body, double u, double v, double depth, double step = 5e-4);
+
 struct FollowerOptions {
   double lift = 0.015;       ///< m above the surface when the pointer is off the bodies
   double max_speed = 0.40;   ///< m/s along the surface, pressing (a pointer jump becomes a fast slide)
@@ -67,6 +81,12 @@ struct FollowerOptions {
   double release_rate = 6.0; ///< shares of the thickness per second, easing off (a finger lets go faster)
   double lift_rate = 8.0;    ///< lifts per second, rising off or coming down to the skin
   double force_gain = 6.0;   ///< 1/s, force mode: share change per second per share of error
+  /// N: no press goes past the share where the model's force reaches this (force_bound());
+  /// 0: no bound.
+  double force_bound = 0.0;
+  /// How the bound is predicted: a fresh probe of the rest scene, as the engine's tick
+  /// queries it (pass the engine's options so shear and the indenter match).
+  scene::ProbeOptions probe{};
 };
 
 class SurfaceFollower {
@@ -82,9 +102,17 @@ class SurfaceFollower {
   void set_force_target(double newtons);
   double force_target() const { return force_target_; }
 
-  /// Advances dt seconds; `felt` is |F| now (force mode reads it). Returns the probe
-  /// target, or nothing before the first pick.
-  std::optional<Vec3> advance(double dt, double felt);
+  /// Advances dt seconds; `felt` is |F| now (force mode reads it). `hold`: the haptic loop
+  /// is stalled or faulted, so `felt` is stale or zero: the finger does not press deeper and
+  /// force mode's controller waits. Returns the probe target, or nothing before the first pick.
+  std::optional<Vec3> advance(double dt, double felt, bool hold = false);
+
+  /// The press is held at the force bound (the chosen share or force would go further).
+  bool at_force_bound() const { return at_bound_; }
+  double force_bound() const { return options_.force_bound; }
+  /// The deepest share at (u, v) whose fresh probe force stays within the force bound
+  /// (the whole `want` when it does; no bound: `want`). Bisection to a 1e-4 share.
+  double bounded_share(double u, double v, double want) const;
 
   bool started() const { return started_; }
   std::size_t body() const { return body_; }
@@ -97,7 +125,9 @@ class SurfaceFollower {
 
  private:
   void walk(double dt);
-  double desired_press(double dt, double felt);
+  double desired_press(double dt, double felt, bool hold);
+  double force_at_share(double u, double v, double share) const;
+  double bound_press(double want, double felt, double from_u, double from_v);
 
   const scene::Scene* scene_;
   FollowerOptions options_;
@@ -108,6 +138,9 @@ class SurfaceFollower {
   double press_ = -1.0;
   double share_ = 0.35;
   double force_target_ = 0.0;
+  bool bounded_ = false;   // the bound cuts the wanted press short
+  bool at_bound_ = false;  // ... and the finger has got there
+  mutable scene::ProbeState probe_state_;  // the bound's fresh probes (sized once)
 };
 
 }  // namespace palpa::live

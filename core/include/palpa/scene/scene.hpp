@@ -20,12 +20,20 @@ struct Bounds {
   Vec3 hi = Vec3::Zero();
   bool contains(const Vec3& q) const;
 };
+/// m: how far past its bottom contour a body on a support keeps its wall (the device may
+/// press that deep and still meet it). Its probe box is grown by this much.
+inline constexpr double kSupportReach = 0.05;
+
 Bounds bounds_of(const mat::MatBody& body);
+/// The box Scene::probe culls with: the bounds, and for a body on a support the bounds
+/// grown by kSupportReach, so that a probe pressed into the support is never culled.
+Bounds probe_box_of(const mat::MatBody& body, const Bounds& bounds);
 
 struct SceneBody {
   mat::MatBody body;
   contact::FootPointSearch search;
-  Bounds bounds;
+  Bounds bounds;     ///< the body itself
+  Bounds probe_box;  ///< what the probe query culls with (probe_box_of)
   std::vector<mat::Tumour> tumours;
   /// Calibrated: the normal spring alone (its stiffness came from the tissue's modulus),
   /// whatever ForceOptions::shear says; Paper: the shear springs as ForceOptions::shear says.
