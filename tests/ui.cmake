@@ -42,7 +42,20 @@ if(PALPA_SANITIZE)
   set_tests_properties(ui.acceptance PROPERTIES ENVIRONMENT
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 else()
-  add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>)
+  # The exams run in real time (a minute or two each): split so that ctest runs them side
+  # by side and none comes near the per-test timeout.
+  add_test(NAME ui.acceptance COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           keysWorkAsSoonAsTheWindowIsActive theGaugeNeverOverlapsDownToTheMinimumSize
+           closingAsksAndAnAbandonedAttemptIsStoredAsSuch slidesOnTheDefaultBreast slidesOnTheTwoDomes
+           aMouseTraineePassesTheDefaultCase aMouseTraineeWithLightPressureOnlyFailsDeepCoverage)
+  add_test(NAME ui.acceptance.ladders COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           aMouseTraineePassesEveryBundledCase:ladder-1.json aMouseTraineePassesEveryBundledCase:ladder-2.json
+           aMouseTraineePassesEveryBundledCase:ladder-3.json)
+  add_test(NAME ui.acceptance.hard COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           "aMouseTraineePassesEveryBundledCase:ladder-4.json" "aMouseTraineePassesEveryBundledCase:two tumours")
+  add_test(NAME ui.acceptance.limits COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           everyStepAtEverySpotStaysUnderTheSafetyLimit aMouseTraineePassesWithAStallingDevice)
+  set_tests_properties(ui.acceptance ui.acceptance.ladders ui.acceptance.hard ui.acceptance.limits PROPERTIES TIMEOUT 1200)
 endif()
 
 # Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).

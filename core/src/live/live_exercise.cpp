@@ -66,6 +66,9 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       follower_(*scene_, follower_options(options, thresholds_)),
       stiffness_state_(scene_->make_state()) {
   if (options_.trainee.empty()) throw std::invalid_argument("trainee id must not be empty");
+  // The follower stops at the bound from 60 Hz predictions; between two frames (a fast
+  // slide onto a stiff lump) the virtual finger itself gives way at the haptic rate.
+  device_.set_force_limit(force_bound(thresholds_));
   // Start the probe well above the first body, so that the first ticks touch nothing.
   if (scene_->size() > 0) {
     const auto& bounds = scene_->body(0).bounds;
@@ -165,7 +168,7 @@ ContactInfo LiveExercise::contact() const {
   c.force_target = follower_.force_target();
   c.force_bound = follower_.force_bound();
   c.safety_limit = thresholds_.max_force;
-  c.at_force_bound = following_ && follower_.on_body() && follower_.at_force_bound();
+  c.at_force_bound = following_ && follower_.on_body() && (follower_.at_force_bound() || device_.yielded() > 2e-4);
   if (s.body < 0 || static_cast<std::size_t>(s.body) >= scene_->size() || !(s.depth > 0.0)) return c;
   c.body = s.body;
   c.depth = s.depth;

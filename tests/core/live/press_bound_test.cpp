@@ -167,5 +167,62 @@ TEST(PressBound, ForceModeStopsAtTheBound) {
   EXPECT_NEAR(felt, 6.0, 0.3);
 }
 
+// Between two GUI frames nothing predicts the force: a finger pressed deep onto a lump at
+// the follower's fastest rate, or slid across it fast and deep, must give way by itself. The virtual
+// device's yield (VirtualDevice::set_force_limit) keeps every tick under the case's gate;
+// the same moves without it go past the gate (the test can fail).
+double jump_and_slide_peak(const Placed& p, double limit) {
+  engine::VirtualDevice device(0.015);
+  device.set_force_limit(limit);
+  engine::Engine engine(p.scene, device);
+  const auto& t = p.scene.body(0).tumours.front();
+  const render::TopContourPicker picker(p.scene);
+  const auto over = [&](double x, double y) {
+    const auto pick = picker.pick(Vec3(x, y, 0.5), Vec3(0, 0, -1));
+    const auto& sb = p.scene.body(0);
+    const auto foot = sb.search.closest(sb.body.skeleton(), pick->point);
+    return surface_frame(sb.body, foot.u, foot.v);
+  };
+  double peak = 0.0;
+  const auto run = [&](double seconds, const auto& target_at) {
+    for (int k = 0; k < static_cast<int>(seconds * 1000); ++k) {
+      const double now = engine.last_touch().sample.t + 1e-3;
+      device.set_target(target_at(now));
+      const auto s = engine.tick(now);
+      peak = std::max(peak, std::hypot(s.force[0], s.force[1], s.force[2]));
+    }
+  };
+  // From 1 cm above the lump straight down to 95 % of the thickness at the follower's
+  // fastest press (FollowerOptions::press_rate, 3 thicknesses a second).
+  const auto f0 = over(t.center[0], t.center[1]);
+  run(0.1, [&](double) { return Vec3(f0.top + 0.01 * f0.normal); });
+  const double down = engine.last_touch().sample.t;
+  run(0.6, [&](double now) {
+    const double share = std::min(0.95, 3.0 * (now - down) - 0.01 / f0.thickness);
+    return Vec3(f0.top - share * f0.thickness * f0.normal);
+  });
+  run(0.2, [&](double) { return Vec3(f0.top + 0.01 * f0.normal); });
+  // Across it at 0.4 m/s (the follower's fastest slide) at 81 %, from 40 mm away.
+  const double start = engine.last_touch().sample.t;
+  run(0.2, [&](double now) {
+    const double x = t.center[0] - 0.04 + 0.4 * (now - start);
+    const auto f = over(x, t.center[1]);
+    return Vec3(f.top - 0.81 * f.thickness * f.normal);
+  });
+  return peak;
+}
+
+TEST(PressBound, TheVirtualFingerGivesWayBetweenFrames) {
+  const Placed p = placed("default.json");
+  const double limit = force_bound(p.thresholds);
+  const double with_yield = jump_and_slide_peak(p, limit);
+  const double without = jump_and_slide_peak(p, 0.0);
+  RecordProperty("peak_with_yield_newtons", std::to_string(with_yield));
+  RecordProperty("peak_without_newtons", std::to_string(without));
+  EXPECT_GT(without, p.thresholds.max_force) << "the moves should overrun the gate without the yield";
+  EXPECT_LE(with_yield, p.thresholds.max_force) << "a tick went past the safety gate";
+  EXPECT_LE(with_yield, limit + 1.0);
+}
+
 }  // namespace
 }  // namespace palpa::live

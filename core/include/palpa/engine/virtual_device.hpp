@@ -25,6 +25,14 @@ class VirtualDevice final : public Device {
   void set_target(const Vec3& target, std::uint32_t buttons = 0) noexcept;
   /// The last force the engine wrote (for display).
   Vec3 last_force() const noexcept;
+  /// A finger that gives way: while the force the engine wrote exceeds `newtons` the probe
+  /// yields along it, at the haptic rate, until it no longer does, and comes back as the
+  /// force falls (integral control on the excess). The mouse's finger so never presses
+  /// past the bound between two GUI frames, however fast it slides onto a stiff lump. 0 (the
+  /// default): no yield. Set before the haptic loop starts.
+  void set_force_limit(double newtons) noexcept { limit_ = newtons > 0.0 ? newtons : 0.0; }
+  /// m: how far the probe has given way (0 when the force is under the limit); any thread.
+  double yielded() const noexcept { return yielded_.load(std::memory_order_relaxed); }
 
  private:
   DeviceCapabilities caps_;
@@ -38,6 +46,11 @@ class VirtualDevice final : public Device {
   Vec3 position_ = Vec3::Zero();
   Vec3 velocity_ = Vec3::Zero();
   double last_t_ = -1.0;
+  double limit_ = 0.0;        // N, set_force_limit
+  double yield_ = 0.0;        // m along yield_direction_
+  Vec3 yield_direction_ = Vec3::UnitZ();
+  std::atomic<double> yielded_{0.0};
+  Vec3 give_way(double dt) noexcept;
 };
 
 /// A probe trajectory: times (s, increasing) and positions (m), linear in between, held
