@@ -447,7 +447,10 @@ palpa::score::Score mouse_exam(palpa::ui::TraineeWindow& w, Hand& hand, const st
       up = !up;
     }
   }
-  const int patches = fill_overlay_gaps(w, hand, levels.back());
+  // The overlay's gaps are gone over at deep pressure, after a deep pass (a trainee who
+  // never presses deep has nothing to fill them with).
+  const bool deep_pass = PressureDial(w.exercise().thresholds(), levels.back()).level() == PressureLevel::Deep;
+  const int patches = deep_pass ? fill_overlay_gaps(w, hand, levels.back()) : 0;
   qInfo("  after the strips: coverage %.1f %%, deep %.1f %%; %d patches gone over", 100 * w.live_coverage().coverage(),
         100 * w.live_coverage().deep_coverage(), patches);
   for (const auto& felt : {std::cref(search), std::cref(deep_search)}) {
@@ -575,9 +578,15 @@ std::vector<std::pair<std::string, palpa::io::CaseFile>> preset_cases() {
 /// The default breast with two fixed tumours, one on each side.
 palpa::io::CaseFile two_tumour_case() {
   auto two = palpa::io::load_case(kCases + "default.json");
+  // The default case's carcinoma (19.4 kPa, stiffening 11.1, 14 mm) on each side.
+  const auto carcinoma = two.tumours.front();
   two.tumours.clear();
-  two.tumours.push_back(tumour_under(two, 0.025, 0.02, 0.006, 1500.0));
-  two.tumours.push_back(tumour_under(two, -0.025, -0.03, 0.006, 1500.0));
+  for (const auto& [x, y] : {std::pair{0.025, 0.02}, std::pair{-0.025, -0.03}}) {
+    auto t = tumour_under(two, x, y, carcinoma.radius, carcinoma.stiffness);
+    t.modulus = carcinoma.modulus;
+    t.stiffening = carcinoma.stiffening;
+    two.tumours.push_back(t);
+  }
   two.document.erase("tumors");
   two.document = palpa::io::to_json(two);
   return palpa::io::parse_case(two.document.dump(), "two tumours");
@@ -628,6 +637,7 @@ class PalpationAcceptanceTest : public QObject {
   /// before the fault (or the limit's margin), and no tick on the body reads 0 N unflagged.
   void no_jolt_after_faults(const palpa::session::Session& s, palpa::ui::TraineeWindow& w) {
     const auto norm = [](const palpa::engine::Sample& x) { return std::hypot(x.force[0], x.force[1], x.force[2]); };
+    const double bound = palpa::live::force_bound(w.exercise().thresholds());
     int faults = 0, stalls = 0, silent_zero = 0;
     double worst = 0.0;
     for (std::size_t k = 1; k < s.samples.size(); ++k) {
@@ -644,14 +654,14 @@ class PalpationAcceptanceTest : public QObject {
       const double until = (end < s.samples.size() ? s.samples[end].t : x.t) + 0.1;
       double after = 0.0;
       for (std::size_t j = k; j < s.samples.size() && s.samples[j].t < until; ++j) after = std::max(after, norm(s.samples[j]));
-      worst = std::max(worst, after - 1.1 * before);
+      // The pre-fault force, or the force the steps are held to (the target of a press).
+      worst = std::max(worst, after - std::max(1.1 * before, bound));
     }
-    qInfo("  stalling device: %d faults, %d late ticks; worst force after a fault above 1.1 x before: %.2f N; silent 0 N on the body: %d",
+    qInfo("  stalling device: %d faults, %d late ticks; worst force after a fault above max(1.1 x before, the bound): %.2f N; silent 0 N on the body: %d",
           faults, stalls, worst, silent_zero);
     QVERIFY2(faults >= 3, "the stalling device should have faulted during the exam");
     QVERIFY2(worst <= 0.2, qPrintable(QString("a jolt %1 N above the pre-fault force").arg(worst)));
     QCOMPARE(silent_zero, 0);
-    Q_UNUSED(w);
   }
 
   void slides_on(const std::string& case_name) {
