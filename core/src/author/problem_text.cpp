@@ -4,10 +4,14 @@
 // GCC 12's -Wmaybe-uninitialized misfires inside libstdc++'s <regex> (std::function moves
 // in the NFA builder) at -O1 with the sanitizers (the dev preset): a known false positive,
 // silenced for the header only.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <regex>
 #pragma GCC diagnostic pop
+#else
+#include <regex>
+#endif
 
 #include <fmt/format.h>
 
