@@ -1,6 +1,7 @@
 // Claiming a session's name: a process killed while creating a session never blocks the
 // next run with that name; of writers racing for one name exactly one gets it; a writer
 // meeting a live recording is told that another process has the file.
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
@@ -178,6 +179,7 @@ TEST(SessionClaim, OfWritersRacingForOneNameExactlyOneGetsIt) {
           const std::string what = e.what();
           const bool told = what.find("already exists") != std::string::npos ||
                             what.find("at the same moment") != std::string::npos;
+          if (!told) std::fprintf(stderr, "refused: %s\n", what.c_str());
           _exit(told ? 1 : 2);
         } catch (...) {
           _exit(3);
