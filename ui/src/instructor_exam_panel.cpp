@@ -11,18 +11,10 @@
 #include <QSignalBlocker>
 #include <QVBoxLayout>
 
+#include "spin_box.hpp"
+
 namespace palpa::ui {
 namespace {
-
-QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int decimals, const QString& suffix) {
-  auto* box = new QDoubleSpinBox(parent);
-  box->setRange(lo, hi);
-  box->setSingleStep(step);
-  box->setDecimals(decimals);
-  box->setSuffix(suffix);
-  box->setKeyboardTracking(false);  // one undo step per value, not per keystroke
-  return box;
-}
 
 const QString kRed = "background: #ffc8c8;";
 

@@ -19,18 +19,10 @@
 
 #include "palpa/mat/tissue_materials.hpp"
 
+#include "spin_box.hpp"
+
 namespace palpa::ui {
 namespace {
-
-QDoubleSpinBox* spin(QWidget* parent, double lo, double hi, double step, int decimals, const QString& suffix) {
-  auto* box = new QDoubleSpinBox(parent);
-  box->setRange(lo, hi);
-  box->setSingleStep(step);
-  box->setDecimals(decimals);
-  box->setSuffix(suffix);
-  box->setKeyboardTracking(false);  // one undo step per value, not per keystroke
-  return box;
-}
 
 const QColor kProblem(255, 200, 200);
 const QColor kWarning(255, 240, 190);

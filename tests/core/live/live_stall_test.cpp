@@ -17,25 +17,14 @@
 
 #include "palpa/live/live_exercise.hpp"
 #include "palpa/session/session_reader.hpp"
+#include "../session/session_test_support.hpp"
 
 namespace palpa::live {
 namespace {
 
 const std::string kDefaultCase = PALPA_SOURCE_DIR "/data/cases/default.json";
 
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::random_device entropy;
-    path_ = std::filesystem::temp_directory_path() / ("palpa-stall-" + std::to_string(entropy()));
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(path_); }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
+using session::test::ScratchDir;  // the session tests' temporary folder
 
 constexpr double kQuiet = 1.2;  // s of haptic time before the first injected event
 
