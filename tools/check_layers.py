@@ -30,6 +30,7 @@ CORE = {
     "scripted": {"engine", "io", "mat", "scene", "session"},
     "live": {"engine", "io", "render", "scene", "score", "scripted", "session"},
     "author": {"io", "mat", "render", "scene", "scripted"},
+    "anatomy": {"io", "mat", "spline"},
 }
 # Headers any core module may include: palpa/version.hpp (generated) and palpa/vec3.hpp
 # (the one 3-vector, docs/architecture.md "One vocabulary").
