@@ -27,7 +27,7 @@ struct LabelVolume {
   }
   std::size_t index(int i, int j, int k) const {
     return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(dims[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims[1]) * k);
+           static_cast<std::size_t>(dims[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(k));
   }
   /// World position (m) of voxel (i, j, k)'s centre (fractional indices allowed).
   std::array<double, 3> world(double i, double j, double k) const;
