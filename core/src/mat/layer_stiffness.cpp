@@ -161,13 +161,15 @@ std::vector<double> layer_stiffness_field(const std::vector<double>& modulus, co
 }
 
 // A layered column: the same integral equation with the layered column's surface compliance
-// in place of the homogeneous layer's. In each layer (Love's strain function, e.g. Barber,
-// Elasticity, ch. 28) the Hankel transform at wavenumber xi of an axisymmetric state is
+// in place of the homogeneous layer's. In each layer (Love's strain function; Timoshenko and
+// Goodier, Theory of Elasticity, 3rd ed., 1970) the Hankel transform at wavenumber xi of an
+// axisymmetric state is
 // phi = J0(xi r) f(z), f = (A + B s) exp(s - tau) + (C + D s) exp(-s), with s = xi z the local
 // depth, tau = xi t the layer's thickness (both exponentials <= 1 in the layer, so nothing
 // overflows at large xi), and, with xi = 1 (the ratio to the half-space is scale-free):
 //   2 G u_r = f',  2 G u_z = (1 - 2 nu) f'' - 2 (1 - nu) f,
 //   sigma_z = (1 - nu) f''' - (2 - nu) f',  tau_rz = nu f'' + (1 - nu) f.
+// One layer, or equal layers, give Hayes' M(u) above to 1e-10 (tests/reference/fem checks M, core.ColumnModulus the moduli).
 namespace {
 
 // Rows u_r, u_z, sigma_z, tau_rz per unit of A, B, C, D at local depth s of a layer of
@@ -176,8 +178,10 @@ Eigen::Matrix4d layer_state(double s, double tau, double g, double nu) {
   const double p = std::exp(s - tau);
   const double e = std::exp(-s);
   Eigen::Matrix4d f;  // rows f, f', f'', f'''
-  f << p, s * p, e, s * e, p, (1.0 + s) * p, -e, (1.0 - s) * e, p, (2.0 + s) * p, e, (s - 2.0) * e, p,
-      (3.0 + s) * p, -e, (3.0 - s) * e;
+  f << p, s * p,         e,  s * e,
+       p, (1.0 + s) * p, -e, (1.0 - s) * e,
+       p, (2.0 + s) * p, e,  (s - 2.0) * e,
+       p, (3.0 + s) * p, -e, (3.0 - s) * e;
   Eigen::Matrix4d out;
   out.row(0) = f.row(1) / (2.0 * g);
   out.row(1) = ((1.0 - 2.0 * nu) * f.row(2) - 2.0 * (1.0 - nu) * f.row(0)) / (2.0 * g);
