@@ -74,6 +74,64 @@ def thin_layer_kappa(a_over_h, nu):
     return np.pi * a_over_h * (1.0 - nu * nu) * oed / 2.0
 
 
+def _layer_state(s, tau, g, nu):
+    """Rows u_r, u_z, sigma_z, tau_rz per unit of the coefficients A, B, C, D of Love's strain
+    function f = (A + B s) exp(s - tau) + (C + D s) exp(-s) at local depth s = xi z of a
+    layer tau = xi t thick, shear modulus g, wavenumber xi = 1."""
+    p, e = np.exp(s - tau), np.exp(-s)
+    f = np.array([[p, s * p, e, s * e], [p, (1 + s) * p, -e, (1 - s) * e],
+                  [p, (2 + s) * p, e, (s - 2) * e], [p, (3 + s) * p, -e, (3 - s) * e]])
+    return np.array([f[1] / (2 * g), ((1 - 2 * nu) * f[2] - 2 * (1 - nu) * f[0]) / (2 * g),
+                     (1 - nu) * f[3] - (2 - nu) * f[1], nu * f[2] + (1 - nu) * f[0]])
+
+
+def column_kernel_weight(u, layers, nu):
+    """M(u) of a layered column [(thickness m, modulus Pa)] from the skin down, bonded to each
+    other and to a rigid base, frictionless skin: 1 - its surface compliance at u = xi h over
+    that of a half-space of the top layer's modulus (core/src/mat/layer_stiffness.cpp)."""
+    h, n = sum(t for t, _ in layers), len(layers)
+    tau = [u * t / h for t, _ in layers]
+    g = [E / (2 * (1 + nu)) for _, E in layers]
+    a, b = np.zeros((4 * n, 4 * n)), np.zeros(4 * n)
+    skin = _layer_state(0.0, tau[0], g[0], nu)
+    a[0:2, 0:4], b[0] = skin[2:4], 1.0
+    for i in range(n - 1):
+        a[2 + 4 * i:6 + 4 * i, 4 * i:4 * i + 4] = _layer_state(tau[i], tau[i], g[i], nu)
+        a[2 + 4 * i:6 + 4 * i, 4 * i + 4:4 * i + 8] = -_layer_state(0.0, tau[i + 1], g[i + 1], nu)
+    a[4 * n - 2:, 4 * n - 4:] = _layer_state(tau[-1], tau[-1], g[-1], nu)[0:2]
+    w = skin[1] @ np.linalg.solve(a, b)[0:4]
+    return 1.0 - abs(w) * layers[0][1] / (2 * (1 - nu * nu))
+
+
+def _panels(lo, hi, count):
+    x, w = np.polynomial.legendre.leggauss(8)
+    width = (hi - lo) / count
+    starts = lo + width * np.arange(count)
+    return ((starts[:, None] + 0.5 * width * (x + 1)).ravel(), np.tile(0.5 * width * w, count))
+
+
+def column_modulus(a, layers, nu):
+    """The equivalent modulus (Pa) of a layered column under a flat punch of radius a: the
+    column's kappa over the homogeneous kappa, times the top layer's modulus (the same
+    quadrature as core/src/mat/layer_stiffness.cpp; 2 or more layers, a/h <= 10)."""
+    h = sum(t for t, _ in layers)
+    lam = a / h
+    tail = 20.0 * min(h / layers[0][0], 200.0)
+    count = lambda lo, hi: max(40, int(np.ceil(lam * (hi - lo) / 3.0)) * 2)
+    u, wu = _panels(0.0, 20.0, count(0.0, 20.0))
+    if tail > 20.0:
+        u2, w2 = _panels(20.0, tail, count(20.0, tail))
+        u, wu = np.concatenate([u, u2]), np.concatenate([wu, w2])
+    x, wx = _panels(0.0, 1.0, 4)
+
+    def factor(m):
+        C = np.cos(lam * np.outer(x, u))
+        A = np.eye(len(x)) - (2.0 * lam / np.pi) * ((C * (m * wu)) @ C.T) * wx[None, :]
+        return float(wx @ np.linalg.solve(A, np.ones(len(x))))
+    column = factor(np.array([column_kernel_weight(v, layers, nu) for v in u]))
+    return layers[0][1] * column / factor(layer_kernel_weight(u, nu))
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description="Hayes et al. (1972) layer factor kappa(a/h, nu)")
     p.add_argument("a_over_h", type=float, nargs="+", help="punch radius / layer thickness")

@@ -35,6 +35,13 @@ Optional: one stiffer spherical inclusion centred on the axis
 --inclusion-ratio of the moduli, same Poisson's ratio). A ratio of 1 gives
 the twin model: the same mesh with no stiffness contrast.
 
+Optional, instead of --modulus: a layered column (--layers "T1:E1,T2:E2,...",
+thicknesses in m from the skin down, moduli in Pa, all bonded to each other and
+the last to the rigid base; same Poisson's ratio). Each interface is a mesh
+line, meshed no coarser than a third of the thinner of its two layers, so every
+element lies in one material. Linear material only; no inclusion. --thickness
+may be left out (it is the sum of the layers) or must equal that sum.
+
 Materials: linear elastic (E, nu), or compressible neo-Hookean via CalculiX
 *HYPERELASTIC, NEO HOOKE: U = C10 (I1bar - 3) + (J - 1)^2 / D1, whose
 initial shear modulus is 2 C10 and bulk modulus 2 / D1, hence
@@ -71,6 +78,7 @@ TOL = 1e-9                     # geometric tolerance (m)
 ELEMENT_TYPES = {"quad": ("CAX8", "CAX6"), "quad-reduced": ("CAX8R", "CAX6"),
                  "tri": ("CAX8", "CAX6")}
 PHYS_LAYER, PHYS_INCLUSION, PHYS_TOOL = 1, 2, 3
+PHYS_SUBLAYER = 10             # + i: the i-th layer below the top one (--layers)
 
 
 class SolveError(RuntimeError):
@@ -112,13 +120,29 @@ def count(text):
     return value
 
 
+def layer_list(text):
+    """--layers "T1:E1,T2:E2,...": [(thickness m, modulus Pa)] from the skin down."""
+    layers = []
+    for item in text.split(","):
+        parts = item.split(":")
+        if len(parts) != 2:
+            raise argparse.ArgumentTypeError(f"want thickness:modulus, got {item!r}")
+        layers.append((positive(parts[0]), positive(parts[1])))
+    return layers
+
+
 def build_parser():
     p = argparse.ArgumentParser(
         prog="indent.py",
         description="Axisymmetric CalculiX model of a rigid frictionless indenter on an "
                     "elastic layer bonded to a rigid base (SI units: m, Pa, N).")
-    p.add_argument("--thickness", type=positive, required=True, help="layer thickness h (m)")
-    p.add_argument("--modulus", type=positive, required=True, help="Young's modulus E (Pa)")
+    p.add_argument("--thickness", type=positive, help="layer thickness h (m); required "
+                   "unless --layers gives it")
+    p.add_argument("--modulus", type=positive, help="Young's modulus E (Pa); required "
+                   "unless --layers")
+    p.add_argument("--layers", type=layer_list, default=None, metavar="T1:E1,T2:E2,...",
+                   help="a layered column instead of --modulus: thicknesses (m) and moduli "
+                        "(Pa) from the skin down, bonded; linear material only")
     p.add_argument("--poisson", type=poisson, default=0.49, help="Poisson's ratio (default 0.49)")
     p.add_argument("--radius", type=positive, default=0.060, help="layer radius R (m, default 0.060)")
     p.add_argument("--indenter", choices=("flat", "pad", "sphere"), default="flat")
@@ -158,8 +182,30 @@ def build_parser():
     return p
 
 
+def check_layers(p, o):
+    """Fill --thickness and the top layer's --modulus from --layers (that modulus sets the
+    contact penalty and the tools' stiffness), or ask for the two plain options."""
+    if o.layers is None:
+        missing = [name for name, v in (("--thickness", o.thickness), ("--modulus", o.modulus))
+                   if v is None]
+        if missing:
+            p.error(f"the following arguments are required: {', '.join(missing)}")
+        return
+    total = sum(t for t, _ in o.layers)
+    if o.thickness is not None and abs(o.thickness - total) > 1e-9:
+        p.error(f"--thickness {o.thickness:g} differs from the sum of --layers, {total:g}")
+    if o.modulus is not None:
+        p.error("give either --modulus or --layers")
+    if o.material != "linear":
+        p.error("--layers supports --material linear only")
+    if o.inclusion_radius is not None:
+        p.error("--layers does not take an inclusion")
+    o.thickness, o.modulus = total, o.layers[0][1]
+
+
 def check_options(p, o):
     """Reject inconsistent options with a one-line argparse error (exit 2)."""
+    check_layers(p, o)
     if o.max_depth >= o.thickness:
         p.error("--max-depth must be smaller than --thickness")
     if o.indenter in ("flat", "pad") and o.punch_radius >= 0.5 * o.radius:
@@ -261,22 +307,55 @@ def layer_geometry(g, o, lc):
     """Layer outline split at the fine skin strip and around the inclusion.
 
     Returns (layer surface, inclusion surface or None, skin-strip curve,
-    point at the outer end of the strip, inclusion arcs)."""
-    h, R = o.thickness, o.radius
+    point at the outer end of the strip, inclusion arcs, (base curve, its axis and rim
+    points)). With --layers this is the top layer."""
+    h, R = (o.layers[0][0] if is_layered(o) else o.thickness), o.radius  # the top layer's
     base_axis, base_rim = g.point(0.0, -h, lc), g.point(R, -h, lc)
     top_rim, top_zone, top_axis = g.point(R, 0.0, lc), g.point(skin_zone(o), 0.0, lc), g.point(0.0, 0.0, lc)
     strip = g.line(top_zone, top_axis)
     outer = [g.line(base_axis, base_rim), g.line(base_rim, top_rim), g.line(top_rim, top_zone), strip]
+    base = (outer[0], base_axis, base_rim)
     if o.inclusion_radius is None:
         outer.append(g.line(top_axis, base_axis))
-        return g.surface(outer), None, strip, top_zone, []
+        return g.surface(outer), None, strip, top_zone, [], base
     ri, di = o.inclusion_radius, o.inclusion_depth
     q_top, q_mid = g.point(0.0, -di + ri, lc), g.point(0.0, -di, lc)
     q_rim, q_bot = g.point(ri, -di, lc), g.point(0.0, -di - ri, lc)
     a1, a2 = g.arc(q_top, q_mid, q_rim), g.arc(q_rim, q_mid, q_bot)
     outer += [g.line(top_axis, q_top), a1, a2, g.line(q_bot, base_axis)]
     inclusion = g.surface([-a2, -a1, g.line(q_top, q_mid), g.line(q_mid, q_bot)])
-    return g.surface(outer), inclusion, strip, top_zone, [a1, a2]
+    return g.surface(outer), inclusion, strip, top_zone, [a1, a2], base
+
+
+def is_layered(o):
+    return o.layers is not None and len(o.layers) > 1
+
+
+def lower_layers(g, o, lc, top_base):
+    """The layers under the top one, each a rectangle sharing its upper edge with the
+    layer above (top_base: the top layer's base curve, its axis and rim points).
+    Returns [(physical tag, surface)] and [(interface curve, size along it)]."""
+    R, depth = o.radius, o.layers[0][0]
+    above, axis_pt, rim_pt = top_base
+    surfaces, interfaces = [], []
+    for i, (t, _) in enumerate(o.layers[1:], start=1):
+        size = min(lc, max(o.mesh_size, min(t, o.layers[i - 1][0]) / 3.0))
+        interfaces.append((above, size))
+        depth += t
+        b_axis, b_rim = g.point(0.0, -depth, lc), g.point(R, -depth, lc)
+        base = g.line(b_axis, b_rim)
+        loop = [base, g.line(b_rim, rim_pt), -above, g.line(axis_pt, b_axis)]
+        surfaces.append((PHYS_SUBLAYER + i, g.surface(loop)))
+        axis_pt, rim_pt, above = b_axis, b_rim, base
+    return surfaces, interfaces
+
+
+def body_tags(o):
+    """Physical tags of the tissue (every layer and the inclusion), not the tool."""
+    tags = {PHYS_LAYER, PHYS_INCLUSION}
+    if o.layers is not None:
+        tags |= {PHYS_SUBLAYER + i for i in range(1, len(o.layers))}
+    return tags
 
 
 def tool_height(o):
@@ -330,8 +409,12 @@ def geo_text(o, lc):
     """The whole .geo script: geometry, size fields and mesh options."""
     g = Geo()
     lc_far = max(min(o.thickness, o.radius) / 4.0, lc)
-    layer, inclusion, strip, strip_end, inclusion_arcs = layer_geometry(g, o, lc_far)
+    layer, inclusion, strip, strip_end, inclusion_arcs, base = layer_geometry(g, o, lc_far)
     phys = [(PHYS_LAYER, layer)]
+    interfaces = []
+    if is_layered(o):
+        lower, interfaces = lower_layers(g, o, lc_far, base)
+        phys += lower
     fine_curves = [strip]
     if inclusion is not None:
         phys.append((PHYS_INCLUSION, inclusion))
@@ -354,6 +437,10 @@ def geo_text(o, lc):
         g.add(distance(5, curves=inclusion_arcs))
         g.add(threshold(6, 5, size, lc_far, 0.0))
         fields.append(6)
+    for n, (curve, size) in enumerate(interfaces):   # fields 10, 11; 12, 13; ...
+        g.add(distance(10 + 2 * n, curves=[curve]))
+        g.add(threshold(11 + 2 * n, 10 + 2 * n, size, lc_far, 0.0))
+        fields.append(11 + 2 * n)
     g.add(f"Field[9] = Min; Field[9].FieldsList = {{{', '.join(map(str, fields))}}};")
     g.add("Background Field = 9;")
     for tag, surf in phys:
@@ -479,11 +566,20 @@ def material_block(name, o, modulus, hyperelastic):
     return lines + ["*ELASTIC", f"{modulus:.10e}, {nu:.10e}"]
 
 
-def element_block(mesh, element):
+def layer_elsets(o):
+    """[(physical tag, element set, material, modulus)] of the layers under the top one."""
+    layers = o.layers if is_layered(o) else []
+    return [(PHYS_SUBLAYER + i, f"LAYER{i + 1}", f"TISSUE{i + 1}", E)
+            for i, (_, E) in enumerate(layers) if i > 0]
+
+
+def element_block(mesh, element, o):
     quad_type, tri_type = ELEMENT_TYPES[element]
+    parts = [(PHYS_LAYER, "LAYER"), (PHYS_INCLUSION, "INCL"), (PHYS_TOOL, "TOOL")]
+    parts += [(phys, name) for phys, name, _, _ in layer_elsets(o)]
     out = []
     for kind, ctype in (("quad8", quad_type), ("tri6", tri_type)):
-        for phys, name in ((PHYS_LAYER, "LAYER"), (PHYS_INCLUSION, "INCL"), (PHYS_TOOL, "TOOL")):
+        for phys, name in parts:
             rows = [(eid, conn) for eid, k, p, conn in mesh.elements if k == kind and p == phys]
             if rows:
                 out.append(f"*ELEMENT, TYPE={ctype}, ELSET={name}")
@@ -494,7 +590,7 @@ def element_block(mesh, element):
 def node_sets(o, mesh):
     """Named node sets and the name of the set that is driven."""
     h = o.thickness
-    body = mesh.nodes_of({PHYS_LAYER, PHYS_INCLUSION})
+    body = mesh.nodes_of(body_tags(o))
     sets = {"BASE": mesh.select(body, lambda x, y: abs(y + h) < TOL),
             "AXIS": mesh.select(body, lambda x, y: abs(x) < TOL and y > -h + TOL)}
     a = o.punch_radius
@@ -555,10 +651,10 @@ def inp_text(o, mesh):
     hyper = o.material == "neohookean"
     L = ["*HEADING", "Palpa indentation reference (tools/fem/indent.py), SI units"]
     L.append("*NODE, NSET=NALL")
-    for n in sorted(mesh.nodes_of({PHYS_LAYER, PHYS_INCLUSION, PHYS_TOOL})):
+    for n in sorted(mesh.nodes_of(body_tags(o) | {PHYS_TOOL})):
         x, y = mesh.nodes[n]
         L.append(f"{n}, {x:.12e}, {y:.12e}")
-    L += element_block(mesh, o.element)
+    L += element_block(mesh, o.element, o)
     sets, load_set = node_sets(o, mesh)
     for name, ids in sets.items():
         if not ids:
@@ -570,6 +666,9 @@ def inp_text(o, mesh):
     if o.inclusion_radius is not None:
         L += material_block("LUMP", o, o.modulus * o.inclusion_ratio, hyper)
         L += ["*SOLID SECTION, ELSET=INCL, MATERIAL=LUMP"]
+    for _, elset, material, modulus in layer_elsets(o):
+        L += material_block(material, o, modulus, hyper)
+        L += [f"*SOLID SECTION, ELSET={elset}, MATERIAL={material}"]
     L += ["*BOUNDARY", "BASE, 1, 2, 0.", "AXIS, 1, 1, 0."]
     if o.indenter == "flat" and o.pin_edge:
         L += ["EDGE, 1, 1, 0."]
@@ -660,7 +759,7 @@ def solve(o, workdir):
     info = {"wall_s": time.monotonic() - t0,
             "cpu_s": cpu1.ru_utime + cpu1.ru_stime - cpu0.ru_utime - cpu0.ru_stime,
             "elements": len(mesh.elements),
-            "nodes": len(mesh.nodes_of({PHYS_LAYER, PHYS_INCLUSION, PHYS_TOOL}))}
+            "nodes": len(mesh.nodes_of(body_tags(o) | {PHYS_TOOL}))}
     dat = os.path.join(workdir, "model.dat")
     totals = read_print_blocks(dat, "total force (fx,fy,fz)", load_set) if os.path.exists(dat) else []
     rows = curve_from_totals(o, totals) if totals else [(0.0, 0.0)]
@@ -676,7 +775,9 @@ def solve(o, workdir):
 
 
 def describe(o, info):
-    text = (f"{o.indenter} on h={o.thickness:g} m, E={o.modulus:g} Pa, nu={o.poisson:g}, "
+    what = (f"layers {','.join(f'{t:g}:{E:g}' for t, E in o.layers)}" if o.layers
+            else f"E={o.modulus:g} Pa")
+    text = (f"{o.indenter} on h={o.thickness:g} m, {what}, nu={o.poisson:g}, "
             f"{o.material}{' nlgeom' if o.nlgeom else ''}: {info['elements']} elements, "
             f"{info['nodes']} nodes, wall {info['wall_s']:.1f} s, cpu {info['cpu_s']:.1f} s")
     if "edge_ur_m" in info:

@@ -92,6 +92,12 @@ class HayesFactorTest(unittest.TestCase):
             ratio = hayes.kappa(r, 0.3, n=200) / hayes.thin_layer_kappa(r, 0.3)
             self.assertLess(abs(ratio - 1.0), 0.05 * 10.0 / r)
 
+    def test_the_column_kernel_of_equal_layers_is_the_layers(self):
+        for u in (0.05, 1.0, 5.0, 15.0):
+            self.assertAlmostEqual(hayes.column_kernel_weight(u, [(0.01, 5e3), (0.02, 5e3)], NU),
+                                   hayes.layer_kernel_weight(u, NU), places=10)
+        self.assertAlmostEqual(hayes.column_modulus(A, [(0.01, 5e3), (0.02, 5e3)], NU), 5e3, places=5)
+
     def test_quadrature_converged(self):
         k1 = hayes.kappa(0.375, NU)
         k2 = hayes.kappa(0.375, NU, n=96, n_u=60000, u_max=60.0)
@@ -354,6 +360,38 @@ class CommandLineTest(unittest.TestCase):
                             message="all three")
         self.check_rejected("--thickness", 0.04, "--modulus", E, "--indenter", "cone",
                             message="invalid choice")
+
+    def test_bad_layers(self):
+        self.check_rejected("--layers", "0.01:3250,0.02", message="thickness:modulus")
+        self.check_rejected("--layers", "0.01:3250,0.02:-1", message="positive")
+        self.check_rejected("--layers", "0.01:3250,0.02:13000", "--modulus", E,
+                            message="either --modulus or --layers")
+        self.check_rejected("--layers", "0.01:3250,0.02:13000", "--thickness", 0.04,
+                            message="differs from the sum")
+        self.check_rejected("--layers", "0.01:3250,0.02:13000", "--material", "neohookean",
+                            "--nlgeom", message="linear only")
+        self.check_rejected("--modulus", E, message="required: --thickness")
+
+    def test_layers_are_meshed_apart_with_a_material_each(self):
+        # no solve: the .geo has a surface per layer on shared interface lines, and the
+        # plain slab's .geo is unchanged by the option's existence
+        import indent
+        parser = indent.build_parser()
+
+        def geo(*args):
+            o = parser.parse_args([*map(str, args), "--out", "unused.csv"])
+            indent.check_options(parser, o)
+            o.mesh_size = indent.default_mesh_size(o)
+            return o, indent.geo_text(o, o.mesh_size)
+        o, text = geo("--layers", "0.002:56000,0.01:3250,0.018:13000")
+        self.assertAlmostEqual(o.thickness, 0.030)
+        self.assertEqual(o.modulus, 56000.0)
+        for tag in (1, 11, 12):
+            self.assertIn(f"Physical Surface({tag})", text)
+        self.assertEqual([e[2:] for e in indent.layer_elsets(o)],
+                         [("TISSUE2", 3250.0), ("TISSUE3", 13000.0)])
+        _, plain = geo("--thickness", 0.03, "--modulus", E)
+        self.assertNotIn("Physical Surface(11)", plain)
 
     @unittest.skipUnless(HAVE_FEM, "gmsh/ccx missing")
     def test_non_convergence_is_reported(self):

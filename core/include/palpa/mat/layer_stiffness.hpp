@@ -10,6 +10,7 @@
 // stiffer than a half-space). docs/model.md, "Stiffness from the tissue's modulus", gives
 // the derivation and the FEM checks (data/reference/).
 #include <array>
+#include <span>
 #include <vector>
 
 namespace palpa::mat {
@@ -49,5 +50,26 @@ class LayerStiffnessTable {
 /// case file's "modulus" becomes. The vectors have the same length.
 std::vector<double> layer_stiffness_field(const std::vector<double>& modulus, const std::vector<double>& radius,
                                           double nu);
+
+/// One tissue layer of a column under the pad: thickness (m) and Young's modulus (Pa).
+struct TissueLayer {
+  double thickness;
+  double modulus;
+};
+
+/// Pa: the one modulus of a layered column (layers listed from the skin down, each bonded
+/// to the next, the last to a rigid base, one Poisson's ratio `nu`) that gives its
+/// small-depth stiffness under a flat pad of `pad_radius` (m) through Hayes' homogeneous
+/// formula at the column's total thickness h, unfloored:
+///   k = 2 a E_eff kappa(a / h, nu) / (1 - nu^2).
+/// Solved exactly (within 1e-4) by extending Hayes et al.'s integral equation to the
+/// layered column's surface compliance (docs/model.md, "Layered columns"); the FEM columns of
+/// data/reference/twolayer_linear.csv agree within 2.6 %. Zero-thickness layers are skipped,
+/// a single layer returns its modulus, a layer of zero modulus makes the column 0, and a
+/// column thinner than a tenth of the pad radius (a/h > 10) takes its uniaxial-strain
+/// limit, the layers as springs in series. Throws std::invalid_argument on an empty list,
+/// a total thickness that is not > 0, a negative or non-finite value, or nu outside [0, 0.5).
+double column_modulus(std::span<const TissueLayer> layers_from_skin, double nu,
+                      double pad_radius = kFingertipPadRadius);
 
 }  // namespace palpa::mat
