@@ -65,7 +65,7 @@ double residuals(const SurfacePair& pair, const Sheet& sheet, const Unknowns& u,
 // The Jacobian of the site equations. In a site's own radius it is exact (the radius
 // does not move the normal); in the heights it is taken by finite differences, one pass per
 // colour of a 3 x 3 colouring of the grid: sites of one colour are 3 apart, so the rows a
-// height moves (its own site's and its 8 neighbours', through the normal) are told apart.
+// height moves (its own site's and its 4 neighbours', through the normal) are told apart.
 // The interpolating spline reaches farther, but faintly.
 Eigen::SparseMatrix<double> jacobian(const SurfacePair& pair, const Sheet& sheet, const Unknowns& u,
                                      const Eigen::VectorXd& f) {
@@ -96,6 +96,7 @@ Eigen::SparseMatrix<double> jacobian(const SurfacePair& pair, const Sheet& sheet
         if (col < 0) continue;
         for (int di = -1; di <= 1; ++di) {
           for (int dj = -1; dj <= 1; ++dj) {
+            if (di != 0 && dj != 0) continue;  // the diagonal neighbours' share is small and doubles the fill
             const int row = u.height(sheet, i + di, j + dj);
             if (row < 0) continue;
             for (int e = 0; e < 2; ++e) {

@@ -14,4 +14,8 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/volume_surfaces.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_columns.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_surfaces.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/lesions.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/column_tissue.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/import.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/case_builder.cpp
 )
