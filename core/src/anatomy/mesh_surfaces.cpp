@@ -46,22 +46,20 @@ void size_fields(const TriangleMesh& mesh, SurfacePair& pair) {
   }
 }
 
-// The free surface's one crossing above the support (crossings within `near` of the support
-// are where a closed skin folds onto it); more than one is an overhang.
-double skin_height(const std::vector<double>& hits, double bottom, double near, const Frame& f, double s, double t,
+// The free surface's height over a column from the skin's crossings above `bottom`: one
+// crossing is the skin itself, however thin the tissue; of two, the lower one is the skin's
+// underside when it lies within `near` of the support (a closed skin resting on it). Any
+// other crossing is an overhang.
+double skin_height(std::vector<double> hits, double bottom, double near, const Frame& f, double s, double t,
                    const std::string& source) {
-  double top = bottom;
-  int above = 0;
-  for (const double h : hits) {
-    if (h <= bottom + near) continue;
-    if (++above > 1) {
-      throw ImportError(fmt::format("{}: overhang at {}: the skin crosses this line along the support's normal more "
-                                    "than once; the free surface must be a height field over the support",
-                                    source, millimetres(f.to_world(s, t, h))));
-    }
-    top = h;
+  hits.erase(std::remove_if(hits.begin(), hits.end(), [&](double h) { return h < bottom - near; }), hits.end());
+  if (hits.size() == 2 && hits.front() <= bottom + near) hits.erase(hits.begin());
+  if (hits.size() > 1) {
+    throw ImportError(fmt::format("{}: overhang at {}: the skin crosses this line along the support's normal more "
+                                  "than once; the free surface must be a height field over the support",
+                                  source, millimetres(f.to_world(s, t, hits[1]))));
   }
-  return top;
+  return hits.empty() ? bottom : std::max(bottom, hits.front());
 }
 
 }  // namespace
@@ -126,6 +124,8 @@ SurfacePair surfaces_from_closed_mesh(const TriangleMesh& mesh, const Vec3& norm
                                       source, std::abs(hits.front()) * 1e3, hits.front() > 0 ? "above" : "below",
                                       millimetres(pair.frame.to_world(s, t, hits.front()))));
       }
+      // The underside on the plane, then the skin (a single crossing: where the two meet).
+      if (hits.size() >= 2) hits.erase(hits.begin());
       pair.bottom.at(a, b) = 0.0;
       pair.top.at(a, b) = skin_height(hits, 0.0, near, pair.frame, s, t, source);
     }

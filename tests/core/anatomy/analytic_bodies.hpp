@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 
 #include "palpa/anatomy/label_volume.hpp"
+#include "palpa/anatomy/mat_fit.hpp"
+#include "palpa/mat/mat_body.hpp"
 #include "palpa/vec3.hpp"
 
 namespace palpa::anatomy::testing {
@@ -143,6 +145,52 @@ inline bool away_from_rim(const AnalyticBody& body, double x, double y, double b
     }
   }
   return true;
+}
+
+/// How far a fitted body's contours lie from the analytic surfaces away from the rim.
+struct Measured {
+  double top = 0.0, bottom = 0.0;  // m, the largest distance away from the rim
+  long points = 0;
+  Vec3 worst_top = Vec3::Zero();
+};
+
+inline mat::MatBody geometry(const FittedBody& fitted) {
+  mat::BodyGrid grid = fitted.grid;
+  grid.stiffness.assign(grid.point_count(), 100.0);
+  return mat::MatBody::fit(grid);
+}
+
+// Both contours sampled 6 times per grid interval, against the analytic surfaces.
+inline Measured measure(const AnalyticBody& body, const FittedBody& fitted) {
+  const auto mat = geometry(fitted);
+  Measured out;
+  const auto& u = mat.u_params();
+  const auto& v = mat.v_params();
+  for (std::size_t i = 0; i + 1 < u.size(); ++i) {
+    for (std::size_t j = 0; j + 1 < v.size(); ++j) {
+      for (int a = 0; a < 6; ++a) {
+        for (int b = 0; b < 6; ++b) {
+          const double uu = u[i] + (u[i + 1] - u[i]) * a / 6.0, vv = v[j] + (v[j + 1] - v[j]) * b / 6.0;
+          double p[3];
+          mat.top().evaluate(uu, vv, p);
+          const Vec3 top(p[0], p[1], p[2]);
+          mat.bottom().evaluate(uu, vv, p);
+          const Vec3 bottom(p[0], p[1], p[2]);
+          const double band = fitted.report.rim_band;
+          if (away_from_rim(body, top.x(), top.y(), band)) {
+            const double d = distance_to([&](double x, double y) { return body.top(x, y); }, top);
+            if (d > out.top) out.worst_top = top;
+            out.top = std::max(out.top, d);
+            ++out.points;
+          }
+          if (away_from_rim(body, bottom.x(), bottom.y(), band)) {
+            out.bottom = std::max(out.bottom, distance_to(body.support, bottom));
+          }
+        }
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace palpa::anatomy::testing
