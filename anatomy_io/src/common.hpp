@@ -84,6 +84,10 @@ class ByteSource {
   /// Exactly n bytes, or a refusal naming `place` (truncated, corrupt compressed data).
   void read(unsigned char* out, std::size_t n, std::string_view place);
   void skip(std::uintmax_t n, std::string_view place);
+  /// After the last voxel of compressed data: reads on to the end of the stream so that
+  /// zlib checks its checksum (gzip CRC-32, zlib Adler-32); a mismatch or a missing end is
+  /// refused. Nothing for raw data.
+  void finish(std::string_view place);
 
  private:
   void inflate_into(unsigned char* out, std::size_t n, std::string_view place);
@@ -92,7 +96,7 @@ class ByteSource {
   bool compressed_;
   z_stream zs_{};
   std::vector<unsigned char> buffer_;
-  bool ended_ = false;
+  bool ended_ = false;  // the compressed stream's end (and checksum) has been read
 };
 
 /// How the stored values become labels: their type, whether bytes are swapped, and NIfTI's

@@ -56,7 +56,7 @@ void ByteSource::inflate_into(unsigned char* out, std::size_t n, std::string_vie
     if (zs_.avail_in == 0) {
       in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(buffer_.size()));
       const auto got = static_cast<uInt>(in_.gcount());
-      if (got == 0 || ended_) {
+      if (got == 0) {
         fail(file_, place, fmt::format("truncated: the compressed data ends {} bytes short", zs_.avail_out));
       }
       zs_.next_in = buffer_.data();
@@ -64,12 +64,34 @@ void ByteSource::inflate_into(unsigned char* out, std::size_t n, std::string_vie
     }
     const int result = inflate(&zs_, Z_NO_FLUSH);
     if (result == Z_STREAM_END) {
+      ended_ = zs_.avail_out == 0;
       // Another gzip member may follow (concatenated streams); otherwise the data is short.
       if (zs_.avail_out > 0 && inflateReset(&zs_) != Z_OK) fail(file_, place, "zlib cannot continue");
       continue;
     }
     if (result == Z_BUF_ERROR && zs_.avail_in == 0) continue;
     if (result != Z_OK) {
+      fail(file_, place,
+           fmt::format("corrupt compressed data (zlib: {})", zs_.msg != nullptr ? zs_.msg : "error " + std::to_string(result)));
+    }
+  }
+}
+
+void ByteSource::finish(std::string_view place) {
+  if (!compressed_ || ended_) return;
+  unsigned char scratch[4096];
+  for (int round = 0; round < 64; ++round) {  // at most 256 KiB past the voxels
+    if (zs_.avail_in == 0) {
+      in_.read(reinterpret_cast<char*>(buffer_.data()), static_cast<std::streamsize>(buffer_.size()));
+      zs_.next_in = buffer_.data();
+      zs_.avail_in = static_cast<uInt>(in_.gcount());
+      if (zs_.avail_in == 0) fail(file_, place, "truncated: the compressed data ends before its checksum");
+    }
+    zs_.next_out = scratch;
+    zs_.avail_out = sizeof scratch;
+    const int result = inflate(&zs_, Z_NO_FLUSH);
+    if (result == Z_STREAM_END) return;
+    if (result != Z_OK && !(result == Z_BUF_ERROR && zs_.avail_in == 0)) {
       fail(file_, place,
            fmt::format("corrupt compressed data (zlib: {})", zs_.msg != nullptr ? zs_.msg : "error " + std::to_string(result)));
     }
@@ -148,6 +170,7 @@ void read_labels(const fs::path& file, ByteSource& source, const Conversion& c, 
     source.read(chunk.data(), count * size, "data");
     convert_labels(file, chunk.data(), count, c, first, volume);
   }
+  source.finish("data");
 }
 
 std::vector<unsigned char> deflate_bytes(const unsigned char* data, std::size_t n, bool gzip) {

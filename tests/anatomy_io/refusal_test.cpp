@@ -158,6 +158,12 @@ TEST(BadFiles, UnknownExtensionMissingFileAndCorruptGzip) {
   for (std::size_t n = data + 2; n < data + 40; ++n) z[n] = static_cast<char>(0xff);
   write_bytes(dir / "corrupt.mha", z);
   expect_refusal_names(refusal(dir / "corrupt.mha"), dir / "corrupt.mha", {"data", "corrupt"});
+  // A flipped bit late in the stream: only the checksum at its end can tell.
+  write_label_volume(dir / "crc.nrrd", oblique_ball());
+  std::string crc = read_bytes(dir / "crc.nrrd");
+  crc[crc.size() - 6] = static_cast<char>(crc[crc.size() - 6] ^ 0x10);  // in the CRC-32
+  write_bytes(dir / "crc.nrrd", crc);
+  expect_refusal_names(refusal(dir / "crc.nrrd"), dir / "crc.nrrd", {"data", "corrupt", "check"});
   write_bytes(dir / "notnifti.nii", std::string(400, 'x'));
   expect_refusal_names(refusal(dir / "notnifti.nii"), dir / "notnifti.nii", {"sizeof_hdr"});
 }
