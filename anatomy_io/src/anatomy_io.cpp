@@ -13,16 +13,49 @@ namespace detail {
 anatomy::TriangleMesh read_mesh_file(const fs::path& file, double metres_per_unit);
 void write_mesh_file(const fs::path& file, const anatomy::TriangleMesh& mesh, double metres_per_unit, bool ascii_stl);
 
-void ErrorCatcher::Execute(vtkObject*, unsigned long, void* data) {
-  failed_ = true;
-  std::string text = data != nullptr ? static_cast<const char*>(data) : "VTK reported an error";
-  // "ERROR: In SOURCE-FILE, line N\nCLASS (ADDRESS): MESSAGE": keep MESSAGE.
+namespace {
+
+// "ERROR: In SOURCE-FILE, line N\nCLASS (ADDRESS): MESSAGE": MESSAGE, on one line.
+std::string vtk_message(const char* data) {
+  std::string text = data != nullptr ? data : "";
   const std::size_t at = text.find("): ");
   if (at != std::string::npos) text = text.substr(at + 3);
   for (char& c : text) c = c == '\n' || c == '\r' ? ' ' : c;
   while (!text.empty() && text.back() == ' ') text.pop_back();
-  message_ = text.empty() ? "VTK reported an error" : text;
+  return text.empty() ? "VTK reported an error" : text;
 }
+
+class SilentWindow : public vtkOutputWindow {
+ public:
+  static SilentWindow* New() {
+    auto* window = new SilentWindow;
+    window->InitializeObjectBase();
+    return window;
+  }
+  void DisplayErrorText(const char* text) override { last_error = vtk_message(text); }
+  void DisplayText(const char*) override {}
+  std::string last_error;
+};
+
+}  // namespace
+
+void ErrorCatcher::Execute(vtkObject*, unsigned long, void* data) {
+  failed_ = true;
+  message_ = vtk_message(static_cast<const char*>(data));
+}
+
+QuietVtk::QuietVtk() : previous_(vtkOutputWindow::GetInstance()), window_(SilentWindow::New()) {
+  previous_->Register(nullptr);
+  vtkOutputWindow::SetInstance(window_);
+}
+
+QuietVtk::~QuietVtk() {
+  vtkOutputWindow::SetInstance(previous_);
+  previous_->UnRegister(nullptr);
+  window_->Delete();
+}
+
+std::string QuietVtk::last_error() const { return static_cast<SilentWindow*>(window_)->last_error; }
 
 void check_writable(const fs::path& file, const anatomy::LabelVolume& v) {
   Geometry g;

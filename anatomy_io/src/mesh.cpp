@@ -165,6 +165,7 @@ anatomy::TriangleMesh read_mesh_file(const fs::path& file, double metres_per_uni
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->Update();
   if (errors->failed()) fail(file, "read", errors->message());
+  if (!quiet.last_error().empty()) fail(file, "read", quiet.last_error());
   auto* raw = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   check_polydata(file, raw);
   vtkNew<vtkTriangleFilter> triangles;

@@ -98,7 +98,9 @@ Geometry meta_geometry(const fs::path& file, const Fields& f) {
   for (std::size_t c = 0; c < 3; ++c) {
     const double length = std::sqrt(matrix[3 * c] * matrix[3 * c] + matrix[3 * c + 1] * matrix[3 * c + 1] +
                                      matrix[3 * c + 2] * matrix[3 * c + 2]);
-    if (!(length > 0.5 && length < 2.0)) fail(file, "TransformMatrix", fmt::format("axis {} is not a unit vector", c));
+    if (!(std::abs(length - 1.0) <= 1e-3)) {
+      fail(file, "TransformMatrix", fmt::format("axis {} has length {:.6g}, not 1: not orthonormal", c, length));
+    }
     if (!std::isfinite(spacing[c]) || !(spacing[c] > 0)) {
       fail(file, "ElementSpacing", fmt::format("spacing {} along axis {} must be finite and positive", spacing[c], c));
     }

@@ -29,8 +29,8 @@ struct Header {
     return std::bit_cast<T>(bytes);
   }
   std::int16_t dim(int n) const { return at<std::int16_t>(40 + 2 * static_cast<std::size_t>(n)); }
-  double pixdim(int n) const { return at<float>(76 + 4 * static_cast<std::size_t>(n)); }
-  double f(std::size_t offset) const { return at<float>(offset); }
+  double pixdim(int n) const { return static_cast<double>(at<float>(76 + 4 * static_cast<std::size_t>(n))); }
+  double f(std::size_t offset) const { return static_cast<double>(at<float>(offset)); }
 };
 
 Scalar nifti_type(const fs::path& file, int datatype) {

@@ -40,9 +40,9 @@ Scalar vtk_scalar(const fs::path& file, int type) {
   fail(file, "PointData", fmt::format("values of VTK type {} are not a label type", type));
 }
 
-void check_reader(const fs::path& file, const ErrorCatcher& errors, vtkXMLImageDataReader& reader, const char* place) {
+void check_reader(const fs::path& file, const ErrorCatcher& errors, const QuietVtk& quiet, const char* place) {
   if (errors.failed()) fail(file, place, errors.message());
-  if (reader.GetErrorCode() != 0) fail(file, place, "VTK cannot read it");
+  if (!quiet.last_error().empty()) fail(file, place, quiet.last_error());
 }
 
 // Header-only: the extent is known before the data is read.
@@ -69,13 +69,13 @@ anatomy::LabelVolume read_vti(const fs::path& file) {
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName(file.c_str());
   reader->UpdateInformation();
-  check_reader(file, *errors, *reader, "header");
+  check_reader(file, *errors, quiet, "header");
   std::array<int, 6> extent{};
   Geometry g = vti_extent(file, *reader, extent);
   g.spacing = {1, 1, 1};  // the dims alone are checked here, before the data is read
   anatomy::LabelVolume checked = checked_volume(file, g, {"WholeExtent", "Spacing", "Origin", "Direction"});
   reader->Update();
-  check_reader(file, *errors, *reader, "data");
+  check_reader(file, *errors, quiet, "data");
   vtkImageData* image = reader->GetOutput();
   for (std::size_t a = 0; a < 3; ++a) {
     g.spacing[a] = image->GetSpacing()[a] * 1e-3;

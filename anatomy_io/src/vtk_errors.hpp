@@ -3,6 +3,7 @@
 // writer collects its ErrorEvent text, and VTK's own output window stays silent meanwhile.
 #include <vtkCommand.h>
 #include <vtkObject.h>
+#include <vtkOutputWindow.h>
 
 #include <string>
 
@@ -21,16 +22,22 @@ class ErrorCatcher : public vtkCommand {
   std::string message_;
 };
 
-/// Silences VTK's output window (errors and warnings) while it lives; restores it after.
+/// While it lives, VTK's output window is one that shows nothing and keeps the last error
+/// text (errors of objects without an observer, such as a reader's XML parser); the previous
+/// window is restored after. VTK's output window is process-wide: reads on several threads at
+/// once would share it (the import reads on one).
 class QuietVtk {
  public:
-  QuietVtk() : previous_(vtkObject::GetGlobalWarningDisplay()) { vtkObject::GlobalWarningDisplayOff(); }
-  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(previous_); }
+  QuietVtk();
+  ~QuietVtk();
   QuietVtk(const QuietVtk&) = delete;
   QuietVtk& operator=(const QuietVtk&) = delete;
+  /// The last error VTK sent to the output window, on one line; empty when none.
+  std::string last_error() const;
 
  private:
-  int previous_;
+  vtkOutputWindow* previous_;
+  vtkOutputWindow* window_;
 };
 
 }  // namespace palpa::anatomy_io::detail

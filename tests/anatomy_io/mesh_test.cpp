@@ -98,6 +98,8 @@ TEST(MeshRefusals, PlyCountsIndicesAndCoordinatesAreChecked) {
   EXPECT_EQ(quad.triangles.size(), 2u);  // polygons triangulated
   write_bytes(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   expect_refusal_names(refusal(dir / "lines.obj"), dir / "lines.obj", {"triangles", "none"});
+  write_bytes(dir / "garbage.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 zero\n");
+  expect_refusal_names(refusal(dir / "garbage.stl"), dir / "garbage.stl", {});
   expect_refusal_names(refusal(dir / "mesh.off"), dir / "mesh.off", {"extension"});
   expect_refusal_names(refusal(dir / "absent.stl"), dir / "absent.stl", {"does not exist"});
 }

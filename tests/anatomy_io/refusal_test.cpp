@@ -94,6 +94,8 @@ TEST(BadGeometry, SpacingOriginAndDirectionAreChecked) {
                         "space directions"}},
       {"sheared.mha", {mha("DimSize = 2 2 2\nTransformMatrix = 1 0 0 0.5 1 0 0 0 1\nElementType = MET_UCHAR\n", voxels),
                        "TransformMatrix"}},
+      {"long_axis.mha", {mha("DimSize = 2 2 2\nTransformMatrix = 1.5 0 0 0 1 0 0 0 1\nElementType = MET_UCHAR\n", voxels),
+                         "TransformMatrix"}},
       {"inf_origin.nrrd", {nrrd("type: uchar\nsizes: 2 2 2\nspace: LPS\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n"
                                 "space origin: (inf,0,0)\n", voxels), "space origin"}},
   };
@@ -164,6 +166,8 @@ TEST(BadFiles, UnknownExtensionMissingFileAndCorruptGzip) {
   crc[crc.size() - 6] = static_cast<char>(crc[crc.size() - 6] ^ 0x10);  // in the CRC-32
   write_bytes(dir / "crc.nrrd", crc);
   expect_refusal_names(refusal(dir / "crc.nrrd"), dir / "crc.nrrd", {"data", "corrupt", "check"});
+  write_bytes(dir / "garbage.vti", "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\"><Image WholeExtent=\"0 1");
+  expect_refusal_names(refusal(dir / "garbage.vti"), dir / "garbage.vti", {"header"});
   write_bytes(dir / "notnifti.nii", std::string(400, 'x'));
   expect_refusal_names(refusal(dir / "notnifti.nii"), dir / "notnifti.nii", {"sizeof_hdr"});
 }

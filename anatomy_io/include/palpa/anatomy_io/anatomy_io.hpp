@@ -3,13 +3,14 @@
 // segmentation tools write. VTK is used here, never in core; the types handed back carry no
 // VTK. Every refusal is an anatomy::ImportError whose what() is one line,
 // "FILE: FIELD-OR-PLACE: what is wrong", and sizes are checked from the header before
-// anything is allocated (docs/anatomy-import.md).
+// anything is allocated.
 //
 // World coordinates are RAS in metres (palpa/anatomy/label_volume.hpp). Per format:
 // - NIfTI-1 (.nii, .nii.gz): RAS by the standard; the sform when sform_code > 0, else the
 //   qform (quaternion, qfac = pixdim[0]), else pixdim alone; xyzt_units (unknown = mm).
 // - NRRD (.nrrd, .nhdr with a detached data file; raw or gzip): `space` RAS, LPS or LAS
-//   (long names too; 3D-right-handed is taken as RAS), `space directions`, `space origin`;
+//   (long names too; 3D-right-handed, or `space dimension` without `space`, is taken as RAS),
+//   `space directions`, `space origin`;
 //   without `space`, `spacings` on the axes; millimetres unless `space units` says otherwise.
 // - MetaImage (.mha, .mhd; raw or zlib): ITK's LPS world: TransformMatrix (each three numbers
 //   the world direction of one index axis), Offset, ElementSpacing in mm; x and y negated.
