@@ -44,12 +44,16 @@ void ErrorCatcher::Execute(vtkObject*, unsigned long, void* data) {
   message_ = vtk_message(static_cast<const char*>(data));
 }
 
-QuietVtk::QuietVtk() : previous_(vtkOutputWindow::GetInstance()), window_(SilentWindow::New()) {
+QuietVtk::QuietVtk()
+    : previous_(vtkOutputWindow::GetInstance()), window_(SilentWindow::New()),
+      log_level_(vtkLogger::GetCurrentVerbosityCutoff()) {
   previous_->Register(nullptr);
   vtkOutputWindow::SetInstance(window_);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
 }
 
 QuietVtk::~QuietVtk() {
+  vtkLogger::SetStderrVerbosity(log_level_);
   vtkOutputWindow::SetInstance(previous_);
   previous_->UnRegister(nullptr);
   window_->Delete();

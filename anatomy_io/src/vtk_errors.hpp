@@ -3,6 +3,7 @@
 // writer collects its ErrorEvent text, and VTK's own output window stays silent meanwhile.
 #include <vtkCommand.h>
 #include <vtkObject.h>
+#include <vtkLogger.h>
 #include <vtkOutputWindow.h>
 
 #include <string>
@@ -24,7 +25,8 @@ class ErrorCatcher : public vtkCommand {
 
 /// While it lives, VTK's output window is one that shows nothing and keeps the last error
 /// text (errors of objects without an observer, such as a reader's XML parser); the previous
-/// window is restored after. VTK's output window is process-wide: reads on several threads at
+/// window is restored after; so is VTK's log on stderr (VTK 9 logs errors there too), whose
+/// level is put back to the cutoff it had. VTK's output window is process-wide: reads on several threads at
 /// once would share it (the import reads on one).
 class QuietVtk {
  public:
@@ -38,6 +40,7 @@ class QuietVtk {
  private:
   vtkOutputWindow* previous_;
   vtkOutputWindow* window_;
+  vtkLogger::Verbosity log_level_;
 };
 
 }  // namespace palpa::anatomy_io::detail
