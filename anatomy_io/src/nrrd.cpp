@@ -174,6 +174,9 @@ anatomy::LabelVolume read_nrrd(const fs::path& file) {
   } else if (!h.blank_line) {
     fail(file, "header", "no blank line before the data (truncated)");
   }
+  if (const std::string* lines = find_field(f, "line skip"); lines != nullptr && lower_trimmed(*lines) != "0") {
+    fail(file, "line skip", "not read; use byte skip");
+  }
   std::int64_t skip = 0;
   if (const std::string* s = find_field(f, "byte skip"); s != nullptr && (!parse_int64(*s, skip) || skip < -1)) {
     fail(file, "byte skip", "not a byte count or -1");

@@ -2,6 +2,7 @@
 // merged, and headers that lie about their size refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "palpa/anatomy_io/anatomy_io.hpp"
@@ -61,6 +62,20 @@ TEST(MeshUnits, CoordinatesAreScaledByMetresPerUnit) {
   const anatomy::TriangleMesh r = read_mesh(dir / "m.ply", 1e-3);  // read as if millimetres
   double radius = std::hypot(r.points[0][0], r.points[0][1], r.points[0][2]);
   EXPECT_NEAR(radius, 0.05e-3, 1e-10);
+}
+
+// Some exporters start a binary STL's 80-byte header with "solid" too: its size, 84 + 50 n,
+// tells it from ASCII.
+TEST(MeshRoundTrip, BinaryStlWhoseHeaderSaysSolid) {
+  ScratchDir dir;
+  write_mesh(dir / "solid.stl", icosphere());
+  std::string bytes = read_bytes(dir / "solid.stl");
+  const std::string header = "solid exported by a tool that writes binary";
+  std::copy(header.begin(), header.end(), bytes.begin());
+  write_bytes(dir / "solid.stl", bytes);
+  const anatomy::TriangleMesh r = read_mesh(dir / "solid.stl");
+  EXPECT_EQ(r.points.size(), 42u);
+  EXPECT_EQ(r.triangles.size(), 80u);
 }
 
 TEST(MeshRefusals, BinaryStlWithAWrongCountIsRefused) {

@@ -58,6 +58,26 @@ TEST(HugeHeader, NiftiNrrdAndMetaImageAreRefusedBeforeAllocation) {
   expect_refusal_names(refusal(dir / "negative.nrrd"), dir / "negative.nrrd", {"sizes"});
 }
 
+// A file over 2 GiB is refused by its size before a byte is read (a sparse file: no disk).
+TEST(HugeFile, OverTwoGibibytesIsRefusedByItsSize) {
+  ScratchDir dir;
+  for (const std::string name : {"big.nii", "big.stl"}) {
+    write_bytes(dir / name, "x");
+    fs::resize_file(dir / name, (std::uintmax_t{1} << 31) + 1);
+    std::string what;
+    try {
+      if (name.ends_with(".stl")) {
+        read_mesh(dir / name);
+      } else {
+        read_label_volume(dir / name);
+      }
+    } catch (const anatomy::ImportError& e) {
+      what = e.what();
+    }
+    expect_refusal_names(what, dir / name, {"file", "2147483649 bytes"});
+  }
+}
+
 TEST(Truncated, DataShorterThanTheHeaderSaysIsRefused) {
   ScratchDir dir;
   const anatomy::LabelVolume v = oblique_ball();
@@ -96,6 +116,7 @@ TEST(BadGeometry, SpacingOriginAndDirectionAreChecked) {
                        "TransformMatrix"}},
       {"long_axis.mha", {mha("DimSize = 2 2 2\nTransformMatrix = 1.5 0 0 0 1 0 0 0 1\nElementType = MET_UCHAR\n", voxels),
                          "TransformMatrix"}},
+      {"line_skip.nrrd", {nrrd("type: uchar\nsizes: 2 2 2\nspacings: 1 1 1\nline skip: 2\n", voxels), "line skip"}},
       {"inf_origin.nrrd", {nrrd("type: uchar\nsizes: 2 2 2\nspace: LPS\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n"
                                 "space origin: (inf,0,0)\n", voxels), "space origin"}},
   };

@@ -1,6 +1,7 @@
 #include "support.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 namespace palpa::anatomy_io::test {
@@ -159,6 +160,36 @@ anatomy::TriangleMesh icosphere() {
   }
   mesh.triangles = finer;
   return mesh;
+}
+
+// A NIfTI-1 header written byte by byte: 4 x 5 x 6 uint8, pixdim 2, 3, 4 mm, voxel (1, 2, 3)
+// labelled 5.
+std::string nifti_header(float qfac, short qform_code, short sform_code) {
+  std::string h(352, '\0');
+  auto put = [&h](std::size_t at, auto value) { std::memcpy(h.data() + at, &value, sizeof value); };
+  put(0, std::int32_t{348});
+  const std::int16_t dim[8] = {3, 4, 5, 6, 1, 1, 1, 1};
+  std::memcpy(h.data() + 40, dim, sizeof dim);
+  put(70, std::int16_t{2});
+  put(72, std::int16_t{8});
+  const float pixdim[8] = {qfac, 2, 3, 4, 1, 1, 1, 1};
+  std::memcpy(h.data() + 76, pixdim, sizeof pixdim);
+  put(108, 352.0f);
+  h[123] = 2;  // mm
+  put(252, qform_code);
+  put(254, sform_code);
+  put(256, 0.0f);                 // quatern_b
+  put(260, 0.0f);                 // quatern_c
+  put(264, 0.70710678118654752f);  // quatern_d: 90 degrees about z
+  put(268, 10.0f);
+  put(272, 20.0f);
+  put(276, 30.0f);
+  const float srow[12] = {0, 0, -2.5f, 7, 1.5f, 0, 0, 8, 0, 3.5f, 0, 9};
+  std::memcpy(h.data() + 280, srow, sizeof srow);
+  std::memcpy(h.data() + 344, "n+1", 4);
+  std::string data(4 * 5 * 6, '\0');
+  data[1 + 4 * (2 + 5 * 3)] = 5;
+  return h + data;
 }
 
 void expect_refusal_names(const std::string& what, const fs::path& file, const std::vector<std::string>& parts) {

@@ -52,6 +52,11 @@ std::array<double, 3> centroid_of_label(const anatomy::LabelVolume& v, std::uint
 /// An icosphere of radius 0.05 m: 42 points, 80 triangles.
 anatomy::TriangleMesh icosphere();
 
+/// A NIfTI-1 file written byte by byte: 4 x 5 x 6 uint8, pixdim 2, 3, 4 mm, pixdim[0] = qfac,
+/// quaternion (0, 0, sin 45 deg) (a quarter turn about z), qoffset (10, 20, 30) mm, sform rows
+/// (0 0 -2.5 7) (1.5 0 0 8) (0 3.5 0 9); voxel (1, 2, 3) labelled 5.
+std::string nifti_header(float qfac, short qform_code, short sform_code);
+
 /// Asserts that what() is one line naming the file and containing every part.
 void expect_refusal_names(const std::string& what, const fs::path& file, const std::vector<std::string>& parts);
 
