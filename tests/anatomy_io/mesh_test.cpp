@@ -108,6 +108,8 @@ TEST(MeshRefusals, PlyCountsIndicesAndCoordinatesAreChecked) {
                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n");
   expect_refusal_names(refusal(dir / "nan.ply"), dir / "nan.ply", {"point 1", "not finite"});
+  write_bytes(dir / "index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  expect_refusal_names(refusal(dir / "index.obj"), dir / "index.obj", {});
   write_bytes(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   const anatomy::TriangleMesh quad = read_mesh(dir / "quad.obj");
   EXPECT_EQ(quad.triangles.size(), 2u);  // polygons triangulated
