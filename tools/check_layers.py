@@ -6,7 +6,8 @@
 Each core module (a folder core/src/M with its headers core/include/palpa/M) may include
 only the core modules listed for it in CORE below, and the graph has no cycle. Above core,
 each part may include only the parts listed in PARTS (ui never includes app). core, plot
-and report include no GUI library; core no OpenCV either. Prints one line per include
+and report include no GUI library; core no OpenCV either; anatomy_io no Qt (VTK's readers
+are its business). Prints one line per include
 that breaks a rule ("FILE:LINE: ... ") and exits 1; exits 0 when there is none.
 """
 
@@ -44,11 +45,14 @@ PARTS = {
     "report": {"folders": ["report"], "may": CORE_NAMES | {"plot", "report"}},
     "lrs": {"folders": ["lrs"], "may": {"lrs"}},
     "store": {"folders": ["store"], "may": CORE_NAMES | {"report", "store"}},
-    "ui": {"folders": ["ui"], "may": CORE_NAMES | {"device", "plot", "report", "ui"}},
-    "app": {"folders": ["app"], "may": CORE_NAMES | {"device", "plot", "report", "lrs", "store", "ui", "options"}},
+    "anatomy_io": {"folders": ["anatomy_io"], "may": CORE_NAMES | {"anatomy_io"}},
+    "ui": {"folders": ["ui"], "may": CORE_NAMES | {"anatomy_io", "device", "plot", "report", "ui"}},
+    "app": {"folders": ["app"], "may": CORE_NAMES | {"anatomy_io", "device", "plot", "report", "lrs", "store", "ui",
+                                                     "options"}},
 }
 
 GUI = re.compile(r"#\s*include\s*<(Q[A-Za-z]|QVTK|vtk)")
+QT = re.compile(r"#\s*include\s*<(Q[A-Za-z]|QVTK)")  # anatomy_io may use VTK's file readers, not Qt
 OPENCV = re.compile(r"#\s*include\s*<opencv2/")
 PALPA = re.compile(r'#\s*include\s*"palpa/([a-z0-9_]+)(/|\.hpp")')
 LOCAL = re.compile(r'#\s*include\s*"((?:\.\./)+[^"]+)"')
@@ -114,6 +118,8 @@ def check_parts(repo, problems):
                     where = "%s:%d: " % (rel, number)
                     if part in ("plot", "report") and GUI.search(line):
                         problems.append(where + "%s includes a GUI library (%s)" % (part, line))
+                    if part == "anatomy_io" and QT.search(line):
+                        problems.append(where + "anatomy_io includes Qt (%s); it reads files with VTK only" % line)
                     m = PALPA.search(line)
                     if m and m.group(1) not in rule["may"]:
                         problems.append(where + "%s includes palpa/%s; %s may include: %s"

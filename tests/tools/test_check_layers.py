@@ -45,9 +45,14 @@ class Layers(unittest.TestCase):
                                               '#include "../../app/cli/commands.hpp"'])
             plant(root, "report/src/page.cpp", ['#include "palpa/score/score.hpp"', "#include <vtkActor.h>"])
             plant(root, "device/src/mouse.cpp", ['#include "palpa/ui/vtk_view.hpp"'])
+            plant(root, "anatomy_io/src/read.cpp", ["#include <vtkSTLReader.h>", "#include <QString>",
+                                                    '#include "palpa/anatomy/label_volume.hpp"',
+                                                    '#include "palpa/report/page.hpp"'])
+            plant(root, "ui/src/import.cpp", ['#include "palpa/anatomy_io/anatomy_io.hpp"'])
             problems = checker.check(root)
         found = sorted(p.split(": ", 1)[0] for p in problems)
-        self.assertEqual(found, ["core/include/palpa/mat/body.hpp:2", "core/src/io/case.cpp:2", "core/src/spline/fit.cpp:1",
+        self.assertEqual(found, ["anatomy_io/src/read.cpp:2", "anatomy_io/src/read.cpp:4",
+                                 "core/include/palpa/mat/body.hpp:2", "core/src/io/case.cpp:2", "core/src/spline/fit.cpp:1",
                                  "device/src/mouse.cpp:1", "report/src/page.cpp:2", "ui/src/window.cpp:2",
                                  "ui/src/window.cpp:3"], "\n".join(problems))
         io_line = next(p for p in problems if p.startswith("core/src/io/case.cpp:2"))
