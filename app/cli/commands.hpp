@@ -35,6 +35,7 @@ Command add_store_command(CLI::App& parent);
 Command add_devices_command(CLI::App& parent);
 Command add_lrs_command(CLI::App& parent);
 Command add_session_command(CLI::App& parent);
+Command add_import_command(CLI::App& parent);  // anatomy to a case (docs/anatomy-import.md)
 
 /// --report DIR [--force]: where a session's report files go (none when `dir` is empty), and
 /// whether files already there may be replaced.

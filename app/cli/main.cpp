@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
                                 add_lrs_command(app)};
   commands.push_back(add_store_command(app));  // the centre store (docs/centre.md)
   commands.push_back(add_session_command(app));  // session upgrade (docs/session-format.md)
+  commands.push_back(add_import_command(app));   // anatomy to a case (docs/anatomy-import.md)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
