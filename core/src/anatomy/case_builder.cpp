@@ -15,13 +15,14 @@ namespace {
 
 using nlohmann::json;
 
-json millimetre_point(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+// A world point in m, as everything in a case file.
+json point_json(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
 
 json fit_error(const ImportResult& r) {
   const FitReport& f = r.body.report;
   const auto one = [](const SurfaceError& e) {
     return json{{"max_m", e.max}, {"rms_m", e.rms}, {"interior_max_m", e.interior_max},
-                {"interior_rms_m", e.interior_rms}, {"worst", millimetre_point(e.worst)}};
+                {"interior_rms_m", e.interior_rms}, {"worst", point_json(e.worst)}};
   };
   return json{{"top", one(f.top)}, {"bottom", one(f.bottom)}, {"rim_band_m", f.rim_band}};
 }
@@ -29,7 +30,7 @@ json fit_error(const ImportResult& r) {
 json lesions(const ImportResult& r) {
   json out = json::array();
   for (const Lesion& l : r.lesions) {
-    json item{{"label", l.label}, {"name", l.name}, {"center", millimetre_point(l.centre)}, {"radius", l.radius},
+    json item{{"label", l.label}, {"name", l.name}, {"center", point_json(l.centre)}, {"radius", l.radius},
               {"voxels", l.voxels}, {"kept", l.kept}};
     if (!l.kept) item["skipped"] = l.skipped;
     out.push_back(std::move(item));

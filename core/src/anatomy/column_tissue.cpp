@@ -52,6 +52,7 @@ std::vector<mat::TissueLayer> simplified(std::vector<mat::TissueLayer> layers) {
 
 double one_modulus(std::vector<mat::TissueLayer> layers, double nu) {
   if (layers.empty()) return 0.0;
+  if (layers.size() == 1) return layers.front().modulus;
   double lo = layers.front().modulus, hi = lo, total = 0.0, weighted = 0.0;
   for (const auto& l : layers) {
     lo = std::min(lo, l.modulus), hi = std::max(hi, l.modulus);

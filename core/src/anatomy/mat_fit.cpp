@@ -150,6 +150,7 @@ FittedBody fit_body_auto(const SurfacePair& pair, const std::string& id) {
   FittedBody best, last;
   double best_error = std::numeric_limits<double>::infinity();
   double spacing = std::max(ls, lt) / 8.0;
+  int stalled = 0;
   for (bool finest = false; !finest;) {
     const int rows = std::clamp(static_cast<int>(std::ceil(ls / spacing)) + 3, 9, 65);
     const int cols = std::clamp(static_cast<int>(std::ceil(lt / spacing)) + 3, 9, 65);
@@ -158,11 +159,15 @@ FittedBody fit_body_auto(const SurfacePair& pair, const std::string& id) {
     try {
       last = fit_body(pair, rows, cols, id, last.grid.rows > 0 ? &last : nullptr);
       error = std::max(last.report.top.interior_max, last.report.bottom.interior_max);
+      const bool improved = error < 0.9 * best_error;
       if (error < best_error) {
         best_error = error;
         best = last;
       }
-      if (error <= kFitTarget) break;
+      // Met, or two finer grids in a row did not help: what is left is in the data (a
+      // feature smaller than the grid can follow, or noise), and finer grids cost more.
+      stalled = improved ? 0 : stalled + 1;
+      if (error <= kFitTarget || stalled == 2) break;
     } catch (const ImportError&) {
       if (finest && best.grid.rows == 0) throw;
     }

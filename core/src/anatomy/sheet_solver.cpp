@@ -130,7 +130,7 @@ Sheet moved(const Sheet& sheet, const Unknowns& u, const Eigen::VectorXd& step, 
 
 // The smoothing rows: kSmoothing times the second difference of the height and of the
 // radius at each active site whose two neighbours along a direction are active too.
-Eigen::SparseMatrix<double> smoothing(const Sheet& sheet, const Unknowns& u) {
+Eigen::SparseMatrix<double> smoothing(const Sheet& sheet, const Unknowns& u, double weight) {
   Triplets triplets;
   int row = 0;
   for (int i = 1; i < sheet.rows - 1; ++i) {
@@ -142,9 +142,9 @@ Eigen::SparseMatrix<double> smoothing(const Sheet& sheet, const Unknowns& u) {
       for (const auto& p : pairs) {
         if (p[0] < 0 || p[1] < 0) continue;
         for (int c = 0; c < 2; ++c) {  // height, then radius
-          triplets.emplace_back(row, p[0] + c, kSmoothing);
-          triplets.emplace_back(row, k + c, -2.0 * kSmoothing);
-          triplets.emplace_back(row, p[1] + c, kSmoothing);
+          triplets.emplace_back(row, p[0] + c, weight);
+          triplets.emplace_back(row, k + c, -2.0 * weight);
+          triplets.emplace_back(row, p[1] + c, weight);
           ++row;
         }
       }
@@ -205,13 +205,29 @@ bool lm_step(const SurfacePair& pair, Sheet& sheet, const Unknowns& u, const Eig
   return false;
 }
 
+// kSmoothing, grown with the sheet's radius over its grid spacing: the zigzag modes grow
+// with that ratio (a height step of one site tilts the normal by step / spacing, which
+// moves the contours by radius times that).
+double smoothing_weight(const Sheet& sheet, const Unknowns& u) {
+  std::vector<double> radii;
+  for (int i = 1; i < sheet.rows - 1; ++i) {
+    for (int j = 1; j < sheet.cols - 1; ++j) {
+      if (u.height(sheet, i, j) >= 0) radii.push_back(sheet.sites[sheet.at(i, j)].r);
+    }
+  }
+  if (radii.empty()) return kSmoothing;
+  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
+  const double spacing = std::min(sheet.s[1] - sheet.s[0], sheet.t[1] - sheet.t[0]);
+  return kSmoothing * std::max(1.0, radii[radii.size() / 2] / spacing);
+}
+
 }  // namespace
 
 int solve_sheet(const SurfacePair& pair, Sheet& sheet) {
   if (sheet.rows < 3 || sheet.cols < 3) return 0;
   const Unknowns u(pair, sheet);
   if (u.count == 0) return 0;
-  const Eigen::SparseMatrix<double> d = smoothing(sheet, u);
+  const Eigen::SparseMatrix<double> d = smoothing(sheet, u, smoothing_weight(sheet, u));
   Eigen::VectorXd f;
   double worst = 0.0;
   double cost = cost_of(pair, sheet, u, d, f, worst);

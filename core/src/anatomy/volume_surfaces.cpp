@@ -20,8 +20,12 @@ bool is_soft(LabelClass c) { return LabelTable::soft(c); }
 bool is_support(LabelClass c) { return c == LabelClass::Support; }
 bool is_body(LabelClass c) { return c != LabelClass::Outside; }
 
-// A gap of air this many samples (half voxels) or fewer inside the tissue is noise, not an overhang.
-constexpr int kGapSamples = 3;
+// Samples are half voxels. A gap of air of up to 3 voxels inside the tissue is taken as
+// tissue: where the skin's side is steep a column grazes its voxel steps, and a body's side
+// may bulge a little over its base. Tissue 4 voxels thick or more under a wider gap is an
+// overhang.
+constexpr int kGapSamples = 6;
+constexpr int kOverhangSamples = 8;
 
 void check_labels(const LabelVolume& v, const LabelTable& table, const std::string& source) {
   if (v.voxel_count() == 0 || v.labels.size() != v.voxel_count()) throw ImportError(source + ": the volume holds no voxels");
@@ -128,40 +132,46 @@ struct Column {
   double bottom = kNoSurface, top = kNoSurface;
 };
 
+// One column read from above: the first body voxel met is the skin (or, with no tissue, the
+// support); the tissue runs down, across air gaps of at most kGapSamples, to the support,
+// which is the bottom. Where the tissue ends in air instead, the bottom is left to the
+// support model, and tissue found again below that air (a run of kOverhangSamples or more)
+// is an overhang. Anything inside the support (vessels crossing the muscle) is never read.
 Column read_column(const VoxelSampler& sampler, const Frame& f, double s, double t, double h_lo, double h_hi,
                    double dh, const std::string& source) {
   const int steps = static_cast<int>((h_hi - h_lo) / dh) + 1;
   const Vec3 start = sampler.index_of(f.to_world(s, t, h_lo));
   const Vec3 step = sampler.index_of(f.to_world(s, t, h_lo + dh)) - start;
-  int first = -1, last = -1, gap = 0;
-  LabelClass below = LabelClass::Outside;
+  const auto height = [&](int q) { return h_lo + q * dh; };
+  int q = steps - 1;
+  while (q >= 0 && !is_body(sampler.nearest(start + q * step))) --q;
   Column col;
-  for (int q = 0; q < steps; ++q) {
-    const LabelClass c = sampler.nearest(start + q * step);
-    if (first < 0) {
-      if (is_soft(c)) first = last = q;
-      else below = c;
-      if (first < 0 && is_support(c)) col.top = h_lo + q * dh;  // the support's top, for columns without tissue
-      continue;
-    }
-    if (is_soft(c) && gap <= kGapSamples) {
-      last = q;
-      gap = 0;
-    } else if (is_soft(c) || (is_support(c) && gap <= kGapSamples)) {
-      throw ImportError(fmt::format("{}: overhang at {}: {}; the free surface must be a height field over the support",
-                                    source, millimetres(f.to_world(s, t, h_lo + q * dh)),
-                                    is_soft(c) ? "tissue above air" : "support above the tissue"));
-    } else {
-      ++gap;
-    }
-  }
-  if (first < 0) {
-    if (!std::isnan(col.top)) col.bottom = col.top = crossing(sampler, f, s, t, col.top, col.top + dh, is_support);
-    else col.top = kNoSurface;
+  if (q < 0) return col;
+  if (is_support(sampler.nearest(start + q * step))) {
+    col.bottom = col.top = crossing(sampler, f, s, t, height(q), height(q + 1), is_support);
     return col;
   }
-  if (is_support(below)) col.bottom = crossing(sampler, f, s, t, h_lo + (first - 1) * dh, h_lo + first * dh, is_support);
-  col.top = crossing(sampler, f, s, t, h_lo + last * dh, h_lo + (last + 1) * dh, is_body);
+  col.top = crossing(sampler, f, s, t, height(q), height(q + 1), is_body);
+  int lowest = q, gap = 0;
+  for (--q; q >= 0 && gap <= kGapSamples; --q) {
+    const LabelClass c = sampler.nearest(start + q * step);
+    if (is_support(c)) {
+      col.bottom = crossing(sampler, f, s, t, height(q), height(lowest), is_support);
+      return col;
+    }
+    if (is_soft(c)) lowest = q, gap = 0;
+    else ++gap;
+  }
+  for (int run = 0; q >= 0; --q) {
+    const LabelClass c = sampler.nearest(start + q * step);
+    run = is_soft(c) ? run + 1 : 0;
+    if (is_support(c)) break;
+    if (run >= kOverhangSamples) {
+      throw ImportError(fmt::format("{}: overhang at {}: tissue above air; the free surface must be a height field "
+                                    "over the support",
+                                    source, millimetres(f.to_world(s, t, height(lowest)))));
+    }
+  }
   return col;
 }
 

@@ -1,0 +1,261 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `palpa-cli import`: analytic anatomy written as files (NRRD raw and
+gzip, STL ASCII and binary) with Python's standard library, imported, and every bad input
+refused in one line with exit 2 and nothing written.
+
+Usage: python3 tests/cli/test_import_cli.py --cli PATH/TO/palpa-cli --repo REPO_ROOT [unittest options]
+"""
+
+import argparse
+import gzip
+import hashlib
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = None
+REPO = None
+TIMEOUT_S = 60
+EXIT_BAD_INPUT = 2
+VOXEL_MM = 2.0
+LESION = (12.0, -8.0, 14.0, 6.0)  # centre (mm) and radius (mm): label 4
+
+
+def run(args):
+    try:
+        return subprocess.run([CLI] + args, capture_output=True, text=True, errors="replace", timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        raise AssertionError(f"palpa-cli {' '.join(args)} did not finish within {TIMEOUT_S} s")
+
+
+def dome_top(x, y):
+    """mm: a cap of a 70 mm sphere centred 40 mm below the support z = 0."""
+    q = 70.0 ** 2 - x * x - y * y
+    return -40.0 + math.sqrt(q) if q > 0 else -1.0
+
+
+def dome_label(x, y, z, overhang=False):
+    lx, ly, lz, lr = LESION
+    if (x - lx) ** 2 + (y - ly) ** 2 + (z - lz) ** 2 < lr * lr:
+        return 4
+    if z < 0.0:
+        return 3 if z > -6.0 else 0
+    if z < dome_top(x, y):
+        return 1
+    if overhang and 30 < x < 45 and abs(y) < 10 and dome_top(x, y) + 8 < z < dome_top(x, y) + 14:
+        return 1
+    return 0
+
+
+def dome_voxels(relabel=None, overhang=False):
+    """The dome voxelized at 2 mm over [-64, 64]^2 x [-10, 34] mm, i fastest."""
+    n, nz = 65, 23
+    out = bytearray()
+    for k in range(nz):
+        for j in range(n):
+            for i in range(n):
+                label = dome_label(-64 + VOXEL_MM * i, -64 + VOXEL_MM * j, -10 + VOXEL_MM * k, overhang)
+                out.append(relabel.get(label, label) if relabel else label)
+    return (n, n, nz), bytes(out)
+
+
+def write_nrrd(path, dims, data, encoding="raw", sizes=None):
+    header = ["NRRD0004", "type: uint8", "dimension: 3", "space: right-anterior-superior",
+              "sizes: " + " ".join(str(d) for d in (sizes or dims)),
+              f"space directions: ({VOXEL_MM},0,0) (0,{VOXEL_MM},0) (0,0,{VOXEL_MM})",
+              "space origin: (-64,-64,-10)", "kinds: domain domain domain", f"encoding: {encoding}"]
+    body = gzip.compress(data, mtime=0) if encoding == "gzip" else data
+    with open(path, "wb") as f:
+        f.write(("\n".join(header) + "\n\n").encode() + body)
+
+
+def write_stl(path, triangles, binary=False):
+    if binary:
+        with open(path, "wb") as f:
+            f.write(b"\0" * 80 + struct.pack("<I", len(triangles)))
+            for t in triangles:
+                f.write(struct.pack("<12fH", 0, 0, 0, *t[0], *t[1], *t[2], 0))
+        return
+    with open(path, "w") as f:
+        f.write("solid s\n")
+        for a, b, c in triangles:
+            f.write("facet normal 0 0 0\nouter loop\n")
+            for p in (a, b, c):
+                f.write(f"vertex {p[0]} {p[1]} {p[2]}\n")
+            f.write("endloop\nendfacet\n")
+        f.write("endsolid s\n")
+
+
+def height_triangles(f, half, step, keep=lambda x, y: True, flip=False):
+    n = int(round(2 * half / step))
+    p = lambda a, b: (-half + a * step, -half + b * step, f(-half + a * step, -half + b * step))
+    out = []
+    for b in range(n):
+        for a in range(n):
+            if not keep(-half + (a + 0.5) * step, -half + (b + 0.5) * step):
+                continue
+            tris = [(p(a, b), p(a + 1, b), p(a + 1, b + 1)), (p(a, b), p(a + 1, b + 1), p(a, b + 1))]
+            out += [(t[0], t[2], t[1]) for t in tris] if flip else tris
+    return out
+
+
+def skin_triangles():
+    top = lambda x, y: max(dome_top(x, y), 0.0)
+    near = lambda x, y: any(dome_top(x + dx, y + dy) > 0 for dx in (-2, 0, 2) for dy in (-2, 0, 2))
+    return height_triangles(top, 64, 2.0, near)
+
+
+class ImportCli(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.dir = cls.tmp.name
+        dims, data = dome_voxels()
+        cls.volume = os.path.join(cls.dir, "dome.nrrd")
+        write_nrrd(cls.volume, dims, data)
+        cls.volume_gz = os.path.join(cls.dir, "dome-gz.nrrd")
+        write_nrrd(cls.volume_gz, dims, data, "gzip")
+        cls.skin = os.path.join(cls.dir, "skin.stl")
+        write_stl(cls.skin, skin_triangles())
+        cls.support = os.path.join(cls.dir, "support.stl")
+        write_stl(cls.support, height_triangles(lambda x, y: 0.0, 66, 6.0), binary=True)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def out(self, name):
+        return os.path.join(self.dir, name)
+
+    def import_ok(self, args, out):
+        r = run(["import"] + args + ["--out", out])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        v = run(["validate", out])
+        self.assertEqual(v.returncode, 0, v.stdout + v.stderr)
+        with open(out) as f:
+            return r, json.load(f)
+
+    def test_a_label_volume_becomes_a_case_with_its_tumour_and_provenance(self):
+        r, case = self.import_ok([self.volume, "--labels", "generic"], self.out("dome.json"))
+        for word in ("fit error", "grid", "tumours   1", "time"):
+            self.assertIn(word, r.stdout)
+        self.assertEqual(len(case["tumors"]), 1)
+        centre = [c * 1e3 for c in case["tumors"][0]["center"]]
+        self.assertLessEqual(math.dist(centre, LESION[:3]), VOXEL_MM)
+        self.assertLessEqual(abs(case["tumors"][0]["radius"] * 1e3 - LESION[3]), VOXEL_MM)
+        self.assertEqual(case["bodies"][0]["support"], "bottom")
+        p = case["provenance"]
+        self.assertEqual(p["source"], "dome.nrrd")
+        with open(self.volume, "rb") as f:
+            self.assertEqual(p["sha256"], hashlib.sha256(f.read()).hexdigest())
+        self.assertIn("--labels generic", p["options"])
+
+    def test_gzip_encoding_gives_the_same_body(self):
+        _, a = self.import_ok([self.volume, "--labels", "generic", "--grid", "17x17"], self.out("a.json"))
+        _, b = self.import_ok([self.volume_gz, "--labels", "generic", "--grid", "17x17"], self.out("b.json"))
+        self.assertEqual(a["bodies"][0]["medial"], b["bodies"][0]["medial"])
+        self.assertEqual(a["bodies"][0]["radius"], b["bodies"][0]["radius"])
+
+    def test_a_label_table_file(self):
+        table = self.out("table.json")
+        with open(table, "w") as f:
+            json.dump({"labels": {"0": {"class": "outside"}, "1": {"class": "tissue", "name": "fat", "modulus": 3250},
+                                  "3": {"class": "support", "name": "wall"},
+                                  "4": {"class": "lesion", "name": "mass", "modulus": 20000}}}, f)
+        _, case = self.import_ok([self.volume, "--labels", table, "--grid", "17x17"], self.out("t.json"))
+        self.assertEqual(case["tumors"][0]["modulus"], 20000)
+        self.assertTrue(all(e == 3250 for e in case["bodies"][0]["modulus"]))
+
+    def test_a_skin_mesh_on_a_support_mesh(self):
+        r, case = self.import_ok([self.skin, "--support", self.support, "--modulus", "3240"], self.out("m.json"))
+        self.assertIn("support_sha256", case["provenance"])
+        self.assertEqual(case["provenance"]["support_source"], "support.stl")
+        top = max(m[2] + rr for m, rr in zip(case["bodies"][0]["medial"], case["bodies"][0]["radius"]))
+        self.assertAlmostEqual(top * 1e3, 30.0, delta=0.5)
+
+    def test_help(self):
+        r = run(["import", "--help"])
+        self.assertEqual(r.returncode, 0)
+        for option in ("--labels", "--support", "--support-plane", "--modulus", "--grid", "--exam-region", "--title",
+                       "--force", "--out"):
+            self.assertIn(option, r.stdout)
+
+    # --- refusals: exit 2, one line naming the file or option, nothing written ---
+
+    def refused(self, args, words, out_name="never.json"):
+        out = self.out(out_name)
+        r = run(["import"] + args + ["--out", out])
+        self.assertEqual(r.returncode, EXIT_BAD_INPUT, r.stdout + r.stderr)
+        err = [line for line in r.stderr.splitlines() if line.strip()]
+        self.assertEqual(len(err), 1, r.stderr)
+        self.assertIn(words, err[0])
+        self.assertFalse(os.path.exists(out), "a refused import wrote its output")
+        return err[0]
+
+    def write_volume(self, name, **kw):
+        dims, data = dome_voxels(**kw)
+        path = self.out(name)
+        write_nrrd(path, dims, data)
+        return path
+
+    def test_refuses_a_volume_without_support(self):
+        self.refused([self.write_volume("nosupport.nrrd", relabel={3: 0}), "--labels", "generic"], "no support")
+
+    def test_refuses_a_volume_without_tissue(self):
+        self.refused([self.write_volume("notissue.nrrd", relabel={1: 0, 4: 0}), "--labels", "generic"], "empty tissue")
+
+    def test_refuses_an_overhang(self):
+        self.refused([self.write_volume("shelf.nrrd", overhang=True), "--labels", "generic"], "overhang at (")
+
+    def test_refuses_a_table_that_does_not_match(self):
+        line = self.refused([self.write_volume("seven.nrrd", relabel={4: 7}), "--labels", "generic"], "label 7")
+        self.assertIn("seven.nrrd", line)
+
+    def test_refuses_a_huge_header_quickly(self):
+        path = self.out("huge.nrrd")
+        dims, data = dome_voxels()
+        write_nrrd(path, dims, data[:1000], sizes=(1048576, 1048576, 1))
+        line = self.refused([path, "--labels", "generic"], "huge.nrrd")
+        self.assertIn("sizes", line)
+
+    def test_refuses_bad_options(self):
+        self.refused([self.volume], "--labels")
+        self.refused([self.volume, "--labels", "victorian"], "--labels")
+        self.refused([self.volume, "--labels", "generic", "--grid", "3x3"], "--grid")
+        self.refused([self.skin, "--support-plane", "0,0,1"], "--support-plane")
+        self.refused([self.skin, "--support", self.support], "--modulus")
+        self.refused([self.out("notes.txt"), "--labels", "generic"], "unknown kind of file")
+        self.refused([self.out("missing.nrrd"), "--labels", "generic"], "missing.nrrd")
+
+    def test_refuses_an_open_mesh_on_a_plane(self):
+        self.refused([self.skin, "--support-plane", "0,0,1,0", "--modulus", "3240"], "open mesh")
+
+    def test_never_replaces_a_file_without_force(self):
+        out = self.out("kept.json")
+        with open(out, "w") as f:
+            f.write("precious")
+        r = run(["import", self.volume, "--labels", "generic", "--out", out])
+        self.assertEqual(r.returncode, EXIT_BAD_INPUT)
+        with open(out) as f:
+            self.assertEqual(f.read(), "precious")
+        r = run(["import", self.volume, "--labels", "generic", "--out", self.volume, "--force"])
+        self.assertEqual(r.returncode, EXIT_BAD_INPUT)
+
+
+def main():
+    global CLI, REPO
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--cli", required=True)
+    parser.add_argument("--repo", required=True)
+    args, rest = parser.parse_known_args()
+    CLI, REPO = args.cli, args.repo
+    unittest.main(argv=[sys.argv[0]] + rest)
+
+
+if __name__ == "__main__":
+    main()
