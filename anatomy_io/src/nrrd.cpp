@@ -202,7 +202,7 @@ anatomy::LabelVolume read_nrrd(const fs::path& file) {
 
 void write_nrrd(const fs::path& file, const anatomy::LabelVolume& v, bool detached) {
   check_writable(file, v);
-  std::string header = "NRRD0004\n# Complete NRRD file format specification at http://teem.sourceforge.net/nrrd/format.html\n";
+  std::string header = "NRRD0004\n# written by Palpa (anatomy_io)\n";
   header += fmt::format("type: unsigned short\ndimension: 3\nspace: right-anterior-superior\nsizes: {} {} {}\n",
                         v.dims[0], v.dims[1], v.dims[2]);
   header += "space directions:";
