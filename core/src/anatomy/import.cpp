@@ -73,6 +73,7 @@ ImportResult import_label_volume(const LabelVolume& volume, const LabelTable& ta
   result.body.grid.poisson = kPoisson;
   result.body.grid.stiffening = dominant_stiffening(volume, table);
   result.body.grid.force_model = mat::ForceModel::Calibrated;
+  result.smoothing_passes = smooth_until_fits(result.body.grid);
   result.lesions = find_lesions(volume, table);
   keep_resolved(result, *std::max_element(volume.spacing.begin(), volume.spacing.end()));
   result.seconds = seconds_since(start);

@@ -38,6 +38,9 @@ struct ImportResult {
   std::vector<Lesion> lesions;  ///< every component found, kept or not
   std::vector<mat::Tumour> tumours;
   double seconds = 0.0;        ///< wall time of the import (reading excluded)
+  /// 3 x 3 smoothing passes the tissue's modulus needed so that its stiffness does not
+  /// overshoot between the skeleton points (0 for uniform tissue).
+  int smoothing_passes = 0;
 };
 
 /// A label volume to a case body: surfaces_from_volume, fit, column moduli, lesions.
