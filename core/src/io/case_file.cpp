@@ -451,6 +451,27 @@ void read_tumour(const json& t, std::size_t index, const std::set<std::string>& 
   if (v.count() == before) out.push_back(std::move(tumour));
 }
 
+// "provenance" (docs/case-format.md, "Provenance"): where an imported case came from, as
+// palpa-cli import wrote it. Kept as written; its text fields are checked, since tools show them.
+void check_provenance(const json& doc, Validator& v) {
+  if (!doc.contains("provenance")) return;
+  const json& p = doc["provenance"];
+  if (!p.is_object()) {
+    v.add("/provenance", std::string("provenance must be an object, not ") + p.type_name());
+    return;
+  }
+  for (const char* key : {"tool", "palpa_version", "source", "support_source", "labels", "options", "grid"}) {
+    if (p.contains(key) && (!p[key].is_string() || utf8_length(p[key].get_ref<const std::string&>()) > 1024)) {
+      v.add(std::string("/provenance/") + key, std::string(key) + " must be a string of at most 1024 characters");
+    }
+  }
+  for (const char* key : {"sha256", "support_sha256"}) {
+    const bool hex = p.contains(key) && p[key].is_string() && p[key].get_ref<const std::string&>().size() == 64 &&
+                     p[key].get_ref<const std::string&>().find_first_not_of("0123456789abcdef") == std::string::npos;
+    if (p.contains(key) && !hex) v.add(std::string("/provenance/") + key, std::string(key) + " must be 64 lower-case hex digits");
+  }
+}
+
 CaseFile validate(json doc, Validator& v) {
   CaseFile out;
   if (!doc.is_object()) {
@@ -484,6 +505,7 @@ CaseFile validate(json doc, Validator& v) {
     v.add("/description", fmt::format("description is longer than {} characters", L::kMaxDescriptionLength));
   }
 
+  check_provenance(doc, v);
   if (!doc.contains("bodies")) {
     v.add("/", "missing \"bodies\"");
   } else if (!doc["bodies"].is_array() || doc["bodies"].empty()) {
