@@ -66,6 +66,22 @@ Command add_tessellation(CLI::App& bench) {
   return {tessellation, [out, case_path] { return run_bench_tessellation(*out, *case_path); }};
 }
 
+Command add_import(CLI::App& bench) {
+  auto out = std::make_shared<std::string>("bench-results");
+  auto voxels = std::make_shared<int>(256);
+  auto points = std::make_shared<int>(317);
+  auto* import = bench.add_subcommand(
+      "import", "The anatomy import's run time beside its fit error: a 256^3 label volume and a pair of 200 000-"
+                "triangle surfaces to a case, and the fit error on grids from 9x11 to 65x65. Writes import.csv into "
+                "--out.");
+  import->add_option("--voxels", *voxels, "voxels along each side of the volume (256: 1 mm voxels); default 256")
+      ->check(CLI::Range(32, 512));
+  import->add_option("--mesh-points", *points, "points along each side of the meshes (317: 199 712 triangles); default 317")
+      ->check(CLI::Range(16, 1024));
+  import->add_option("--out", *out, "output folder; default bench-results");
+  return {import, [out, voxels, points] { return run_bench_import(*out, *voxels, *points); }};
+}
+
 Command add_contrast_modes(CLI::App& bench) {
   auto out = std::make_shared<std::string>("bench-results");
   auto seed = std::make_shared<std::uint64_t>(7);
@@ -148,7 +164,8 @@ Command add_bench_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("bench", "Benchmarks that report run time together with the error it buys.");
   app->require_subcommand(1);
   const std::vector<Command> suites = {add_accuracy(*app), add_dynamics(*app), add_tessellation(*app),
-                                       add_fidelity(*app), add_table1(*app), add_contrast_modes(*app)};
+                                       add_fidelity(*app), add_table1(*app), add_contrast_modes(*app),
+                                       add_import(*app)};
   return {app, [suites] {
             for (const auto& suite : suites)
               if (suite.app->parsed()) return suite.run();

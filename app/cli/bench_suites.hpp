@@ -22,4 +22,11 @@ int run_bench_tessellation(const std::filesystem::path& out_dir, const std::file
 /// be loaded.
 int run_bench_contrast_modes(const std::filesystem::path& out_dir, std::uint64_t seed);
 
+/// palpa-cli bench import: a cap on a support voxelized at `voxels`^3 (1 mm voxels at 256)
+/// with two masses, written as .nii.gz and imported; the same cap's skin and support as two
+/// STL surfaces of 2 (mesh_points - 1)^2 triangles each, imported; and the volume's fit on
+/// grids from 9 x 11 to 65 x 65. Time, fit error away from the rim and the process's peak
+/// resident memory for each. Writes out_dir/import.csv (and the inputs) and prints the table.
+int run_bench_import(const std::filesystem::path& out_dir, int voxels, int mesh_points);
+
 }  // namespace palpa::cli

@@ -122,6 +122,24 @@ class BenchContrastModes(unittest.TestCase):
                     self.assertLess(float(r["depth_over_m"]), float(r["depth_away_m"]), r)
 
 
+class BenchImport(unittest.TestCase):
+    def test_short_form_reports_time_beside_fit_error(self):
+        # The short form (64^3, 2 x 7938 triangles); the long form is the default (256^3, 2 x 199712).
+        with tempfile.TemporaryDirectory(prefix="palpa_bench_import_") as d:
+            res = run(["bench", "import", "--voxels", "64", "--mesh-points", "64", "--out", d], timeout=300)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(os.path.join(d, "import.csv")) as fh:
+                rows = list(csv.DictReader(fh))
+            self.assertEqual(len(rows), 2 + 7)
+            self.assertEqual([r["grid"] for r in rows[2:]], ["9x11", "13x15", "17x17", "25x25", "33x33", "49x49", "65x65"])
+            for r in rows:
+                self.assertGreater(float(r["seconds"]), 0.0, r)
+                self.assertGreater(float(r["peak_rss_mb"]), 0.0, r)
+                # 4 mm voxels: the fit stays within half a voxel + 0.2 mm of what it read.
+                self.assertLess(float(r["top_interior_max_mm"]), 2.2, r)
+                self.assertLess(float(r["bottom_interior_max_mm"]), 2.2, r)
+
+
 class BenchTable1(unittest.TestCase):
     def test_the_table1_scenes_run_in_kpa_with_either_indenter_and_refuse_a_finger_on_springs(self):
         with tempfile.TemporaryDirectory(prefix="palpa_bench_t1_") as d:

@@ -144,6 +144,10 @@ FittedBody fit_body(const SurfacePair& pair, int rows, int cols, const std::stri
   return out;
 }
 
+// m: the default grid is at least this fine, whatever the fit error: about a finger pad's
+// width, so that the tissue and the tumours are placed where the finger meets them.
+constexpr double kCoarsestSpacing = 10e-3;
+
 FittedBody fit_body_auto(const SurfacePair& pair, const std::string& id) {
   const Footprint box = footprint(pair);
   const double ls = box.s_hi - box.s_lo, lt = box.t_hi - box.t_lo;
@@ -167,7 +171,8 @@ FittedBody fit_body_auto(const SurfacePair& pair, const std::string& id) {
       // Met, or two finer grids in a row did not help: what is left is in the data (a
       // feature smaller than the grid can follow, or noise), and finer grids cost more.
       stalled = improved ? 0 : stalled + 1;
-      if (error <= kFitTarget || stalled == 2) break;
+      const double reached = std::max(last.s_sites[1] - last.s_sites[0], last.t_sites[1] - last.t_sites[0]);
+      if (error <= kFitTarget || (stalled >= 2 && reached <= kCoarsestSpacing)) break;
     } catch (const ImportError&) {
       if (finest && best.grid.rows == 0) throw;
     }

@@ -56,7 +56,8 @@ FittedBody fit_body(const SurfacePair& pair, int rows, int cols, const std::stri
 
 /// fit_body on grids from about 8 intervals across the body, each started from the one
 /// before, refined by sqrt(2) (by 2 while the error is over 4 times the target) up to
-/// 65 x 65, until the interior error meets kFitTarget or two finer grids in a row gain less than 10 %
+/// 65 x 65, until the interior error meets kFitTarget or, once the points are at most 10 mm apart, two
+/// finer grids in a row gain less than 10 %
 /// (what is left is in the data: a feature smaller than a grid can follow, or noise); the
 /// best grid tried is returned.
 FittedBody fit_body_auto(const SurfacePair& pair, const std::string& id);
