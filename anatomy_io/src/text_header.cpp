@@ -38,9 +38,15 @@ const std::string* find_field(const std::vector<std::pair<std::string, std::stri
 }
 
 fs::path detached_path(const fs::path& header, const std::string& field, const std::string& name) {
-  const fs::path relative(name);
   if (name.empty()) fail(header, field, "names no data file");
-  const fs::path resolved = relative.is_absolute() ? relative : header.parent_path() / relative;
+  // Only a file beside the header, as 3D Slicer and ITK write them: a header is untrusted,
+  // and a path of its choosing could make Palpa read any file, or a pipe that never ends.
+  if (name.find_first_of("/\\") != std::string::npos || name == "." || name == "..") {
+    fail(header, field, "the data file must be a file beside the header (a name without folders)");
+  }
+  const fs::path resolved = header.parent_path() / name;
+  std::error_code error;
+  if (!fs::is_regular_file(resolved, error)) fail(header, field, "the data file beside the header is missing or not a regular file");
   checked_file_size(resolved);
   return resolved;
 }

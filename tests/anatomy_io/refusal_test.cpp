@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include <sys/stat.h>
+
 #include "palpa/anatomy_io/anatomy_io.hpp"
 #include "support.hpp"
 
@@ -194,6 +196,36 @@ TEST(BadFiles, UnknownExtensionMissingFileAndCorruptGzip) {
   expect_refusal_names(garbage, dir / "garbage.vti", {"header", "parsing"});
   write_bytes(dir / "notnifti.nii", std::string(400, 'x'));
   expect_refusal_names(refusal(dir / "notnifti.nii"), dir / "notnifti.nii", {"sizeof_hdr"});
+}
+
+}  // namespace
+}  // namespace palpa::anatomy_io::test
+
+namespace palpa::anatomy_io::test {
+namespace {
+
+// A header names its detached data; it may name only a regular file beside it, so that a
+// hostile header can make Palpa read neither any file on the machine nor a pipe forever.
+TEST(DetachedData, OnlyARegularFileBesideTheHeaderIsRead) {
+  ScratchDir dir;
+  fs::create_directories(dir / "inner");
+  write_bytes(dir / "outside.raw", std::string(8, '\1'));
+  const std::string head = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nspacings: 1 1 1\nencoding: raw\n";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"up.nhdr", "../outside.raw"}, {"absolute.nhdr", (dir / "outside.raw").string()}, {"dot.nhdr", ".."}};
+  for (const auto& [name, data] : cases) {
+    write_bytes(dir / "inner" / name, head + "data file: " + data + "\n");
+    const std::string what = refusal(dir / "inner" / name);
+    expect_refusal_names(what, dir / "inner" / name, {"data file"});
+    EXPECT_NE(what.find("beside the header"), std::string::npos) << what;
+  }
+  ASSERT_EQ(mkfifo((dir / "inner" / "pipe.raw").c_str(), 0600), 0);
+  write_bytes(dir / "inner" / "pipe.nhdr", head + "data file: pipe.raw\n");
+  const std::string what = refusal(dir / "inner" / "pipe.nhdr");
+  EXPECT_NE(what.find("not a regular file"), std::string::npos) << what;
+  write_bytes(dir / "inner" / "beside.raw", std::string(8, '\1'));
+  write_bytes(dir / "inner" / "beside.nhdr", head + "data file: beside.raw\n");
+  EXPECT_EQ(read_label_volume(dir / "inner" / "beside.nhdr").labels.size(), 8u);
 }
 
 }  // namespace
