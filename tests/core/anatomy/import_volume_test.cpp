@@ -185,11 +185,12 @@ io::CaseFile authored_dome(const FittedBody& like, double modulus) {
 
 // Straight down at (x, y): in 0.02 mm steps from 3 mm above the analytic skin until the
 // body pushes back (its own skin), then `depth` further.
-double press(const scene::Scene& scene, double x, double y, double depth) {
+double press(const scene::Scene& scene, double x, double y, double depth,
+             const AnalyticBody& body = testing::dome_on_plane()) {
   auto state = scene.make_state();
   scene::ProbeOptions options;
   options.remember_side = true;
-  double z = testing::dome_on_plane().top(x, y) + 0.003;
+  double z = body.top(x, y) + 0.003;
   while (scene.probe(Vec3(x, y, z), state, options).force.total.norm() == 0.0 && z > -0.01) z -= 0.02e-3;
   Vec3 last = Vec3::Zero();
   for (int s = 1; s <= 20; ++s) last = scene.probe(Vec3(x, y, z - depth * s / 20.0), state, options).force.total;
@@ -213,6 +214,21 @@ TEST(ImportVolume, AFreshPressFeelsWithinFivePercentOfTheBodyAuthoredDirectly) {
     }
   }
   std::printf("fresh presses, imported against authored: largest difference %.1f %%\n", 100.0 * worst);
+}
+
+// Ribs under the tissue: the same press, to the same depth below the flat skin, meets the
+// support sooner over a rib (23 mm of tissue) than between two (29 mm), and is felt.
+TEST(ImportVolume, ADeepPressOverARibFeelsIt) {
+  const AnalyticBody ribs = testing::slab_on_ribs();
+  const ImportResult r = import_label_volume(testing::voxelize(ribs, 1e-3), builtin_label_table("generic"), {}, "ribs.nii");
+  const io::CaseFile file = make_case(r, {"ribs.nii", std::string(64, '0'), "", "", "generic", ""}, "Ribs", ExamRegion::Whole);
+  const auto scene = scene::Scene::build(file, "ribs");
+  const double crest = 0.035 / 4.0, trough = -0.035 / 4.0;  // where the support is +3 and -3 mm
+  for (double y : {-0.01, 0.0, 0.012}) {
+    const double over = press(scene, crest, y, 0.018, ribs), between = press(scene, trough, y, 0.018, ribs);
+    std::printf("18 mm deep at y = %.0f mm: %.2f N over a rib, %.2f N between ribs\n", y * 1e3, over, between);
+    EXPECT_GT(over, 1.3 * between);
+  }
 }
 
 }  // namespace
