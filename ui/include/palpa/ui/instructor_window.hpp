@@ -145,6 +145,10 @@ class InstructorWindow : public QMainWindow {
   QString choose_save_path();
   void open_dialog();
   void import_dialog();
+  /// Case > Import anatomy…: segmented anatomy imported and previewed in a dialog; "Use
+  /// this case" makes it the draft (ui/src/import_anatomy_dialog.hpp).
+  void import_anatomy_dialog();
+  void use_imported_case(const io::CaseFile& file);
 
   author::CaseDraft draft_;
   VtkView* view_ = nullptr;
