@@ -162,6 +162,7 @@ class ImportAnatomyTest : public QObject {
     click(button(dialog, "Use this case"));
     QTRY_VERIFY(!dialog->isVisible());
     check_draft(window);
+    QVERIFY2(window.message().startsWith("Imported dome.nrrd"), qPrintable(window.message()));
 
     auto* title = window.title_edit();
     title->setFocus();

@@ -5,6 +5,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileInfo>
+#include <QFormLayout>
 #include <QGroupBox>
 #include <QLabel>
 #include <QLineEdit>
@@ -45,6 +46,9 @@ void ImportAnatomyDialog::input_changed() {
 void ImportAnatomyDialog::table_choice_changed() {
   const QString choice = table_choice_->currentData().toString();
   table_file_row_->setVisible(choice == "file");
+  if (auto* form = qobject_cast<QFormLayout*>(volume_box_->layout())) {
+    if (QWidget* label = form->labelForField(table_file_row_)) label->setVisible(choice == "file");
+  }
   map_->setVisible(choice == "map");
   if (choice == "map" && volume_box_->isVisibleTo(this) && mapped_path_ != path_->text().trimmed().toStdString()) {
     read_labels();

@@ -75,13 +75,13 @@ std::vector<float> fit_errors(const anatomy::SurfacePair& surfaces, const render
   return out;
 }
 
-vtkSmartPointer<vtkActor> surface_actor(vtkPolyData* data, vtkLookupTable* lut, bool coloured) {
+vtkSmartPointer<vtkActor> surface_actor(vtkPolyData* data, vtkLookupTable* lut) {
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(data);
   mapper->SetLookupTable(lut);
   mapper->SetScalarModeToUsePointData();
   mapper->UseLookupTableScalarRangeOn();
-  mapper->SetScalarVisibility(coloured);
+  mapper->ScalarVisibilityOn();
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
   actor->GetProperty()->SetInterpolationToPhong();
@@ -120,7 +120,7 @@ ImportPreview::ImportPreview(QWidget* parent) : QWidget(parent) {
   summary_ = new QPlainTextEdit(this);
   summary_->setObjectName("importSummary");
   summary_->setReadOnly(true);
-  summary_->setLineWrapMode(QPlainTextEdit::NoWrap);
+  summary_->setLineWrapMode(QPlainTextEdit::WidgetWidth);
   summary_->setMinimumWidth(380);
   layout->addWidget(view_, 3);
   layout->addWidget(summary_, 2);
@@ -145,10 +145,8 @@ ImportPreview::ImportPreview(QWidget* parent) : QWidget(parent) {
 ImportPreview::~ImportPreview() = default;
 
 void ImportPreview::clear() {
-  for (auto& a : {top_actor_, bottom_actor_}) {
-    if (a) renderer_->RemoveActor(a);
-  }
-  top_actor_ = bottom_actor_ = nullptr;
+  if (top_actor_) renderer_->RemoveActor(top_actor_);
+  top_actor_ = nullptr;
   top_ = nullptr;
   for (auto& a : lesions_) overlay_->RemoveActor(a);
   lesions_.clear();
@@ -174,9 +172,10 @@ void ImportPreview::draw_top(const anatomy_io::ImportedCase& imported) {
   const auto& body = scene.body(0).body;
   render::TessellationOptions options;
   options.tolerance = kTolerance;
-  render::Mesh top, bottom;
+  // The top contour only: where the tissue thins to nothing it lies on the bottom one,
+  // and drawing both there would flicker between them.
+  render::Mesh top;
   render::tessellate(body.top(), options, false, top);
-  render::tessellate(body.bottom(), options, true, bottom);
   const std::vector<float> errors = fit_errors(imported.result.surfaces, top);
   float hi = 0.05f;  // mm: a perfect fit still gets a scale
   for (float e : errors) {
@@ -185,10 +184,8 @@ void ImportPreview::draw_top(const anatomy_io::ImportedCase& imported) {
   lut_->SetTableRange(0.0, hi);
   lut_->Build();
   top_ = to_polydata(top, &errors);
-  top_actor_ = surface_actor(top_, lut_, true);
-  bottom_actor_ = surface_actor(to_polydata(bottom, nullptr), lut_, false);
+  top_actor_ = surface_actor(top_, lut_);
   renderer_->AddActor(top_actor_);
-  renderer_->AddActor(bottom_actor_);
   legend_->VisibilityOn();
 }
 

@@ -53,7 +53,7 @@ class ImportPreview : public QWidget {
   vtkSmartPointer<vtkLookupTable> lut_;
   vtkSmartPointer<vtkScalarBarActor> legend_;
   vtkSmartPointer<vtkPolyData> top_;
-  vtkSmartPointer<vtkActor> top_actor_, bottom_actor_;
+  vtkSmartPointer<vtkActor> top_actor_;
   std::vector<vtkSmartPointer<vtkActor>> lesions_;
 };
 

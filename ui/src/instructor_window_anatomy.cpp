@@ -23,7 +23,8 @@ void InstructorWindow::import_anatomy_dialog() {
 void InstructorWindow::use_imported_case(const io::CaseFile& file) {
   commit_pending();
   const nlohmann::json& provenance = file.document.value("provenance", nlohmann::json::object());
-  const std::string source = "imported " + provenance.value("source", std::string("anatomy"));
+  const std::string name = provenance.value("source", std::string("anatomy"));
+  const std::string source = "imported " + name;
   // The document keeps what the import wrote besides the bodies and tumours
   // ("provenance", "exam_region"); saving writes them back (io::to_json).
   draft_ = author::CaseDraft::from_document(io::to_json(file), source);
@@ -31,9 +32,9 @@ void InstructorWindow::use_imported_case(const io::CaseFile& file) {
   refresh();
   frame_camera();
   const auto problems = draft_.validate();
-  set_message(problems.empty()
-                  ? tr("Imported \"%1\": check it, then Save As to keep it.").arg(QString::fromStdString(file.title))
-                  : tr("Imported \"%1\": %2 problem(s), listed below.").arg(QString::fromStdString(file.title)).arg(problems.size()));
+  const QString shown = QString::fromStdString(name);
+  set_message(problems.empty() ? tr("Imported %1: check it, then Save As to keep it.").arg(shown)
+                               : tr("Imported %1: %2 problem(s), listed below.").arg(shown).arg(problems.size()));
 }
 
 }  // namespace palpa::ui
