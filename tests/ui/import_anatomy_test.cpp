@@ -3,7 +3,8 @@
 // dialog's buttons clicked. A dome of tissue (label 1) on a support (3) with a lesion ball
 // (4), 2 mm voxels (tests/core/anatomy/analytic_bodies.hpp): the generic table and the same
 // labels mapped by hand each give one body and one tumour at the ball; saved, the case
-// loads and keeps its provenance and exam region. A text file named .nrrd shows one line
+// loads and keeps its provenance and exam region. A skin mesh on a support mesh takes the
+// tissue's modulus typed in kPa. A text file named .nrrd shows one line
 // in the dialog; Cancel, and a failed import, leave the draft as it was.
 #include <QAction>
 #include <QApplication>
@@ -28,6 +29,7 @@
 
 #include "../../ui/src/import_preview.hpp"
 #include "../core/anatomy/analytic_bodies.hpp"
+#include "../core/anatomy/analytic_meshes.hpp"
 #include "palpa/anatomy_io/anatomy_io.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
@@ -222,6 +224,40 @@ class ImportAnatomyTest : public QObject {
     const auto& provenance = window.draft().document()["provenance"];
     QCOMPARE(provenance["labels"].get<std::string>(), std::string("labels mapped by hand"));
     QVERIFY(provenance["options"].get<std::string>().find("4 lesion \"label 4\" 60 kPa") != std::string::npos);
+  }
+
+  // A skin mesh on a support mesh (mm, as 3D Slicer writes them) with the tissue typed in
+  // kPa: one body of that modulus, no tumours, the support mesh named in the provenance.
+  void skinMeshOnASupportMesh() {
+    QTemporaryDir dir;
+    const auto dome = palpa::anatomy::testing::dome_on_plane();
+    const QString skin = dir.filePath("skin.stl"), support = dir.filePath("support.stl");
+    palpa::anatomy_io::write_mesh(skin.toStdString(), palpa::anatomy::testing::skin_mesh(dome, 2e-3));
+    palpa::anatomy_io::write_mesh(support.toStdString(), palpa::anatomy::testing::support_mesh(dome));
+    InstructorWindow window{palpa::author::CaseDraft()};
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QDialog* dialog = open_import(window);
+    QVERIFY(dialog);
+    type_line(dialog, "importPath", skin);
+    QVERIFY(dialog->findChild<QComboBox*>("supportKind")->isVisible());
+    type_line(dialog, "supportPath", support);
+    auto* modulus = dialog->findChild<QDoubleSpinBox*>("tissueModulus");
+    modulus->setFocus();
+    QTest::keyClick(modulus, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(modulus, "5");
+    QTest::keyClick(modulus, Qt::Key_Tab);
+    click(button(dialog, "Import"));
+    QVERIFY2(dialog->findChild<QLabel*>("importError")->text().isEmpty(),
+             qPrintable(dialog->findChild<QLabel*>("importError")->text()));
+    click(button(dialog, "Use this case"));
+    QTRY_VERIFY(!dialog->isVisible());
+    const auto& doc = window.draft().document();
+    QCOMPARE(doc["bodies"].size(), std::size_t{1});
+    QCOMPARE(window.draft().tumour_count(), std::size_t{0});
+    for (const auto& e : doc["bodies"][0]["modulus"]) QCOMPARE(e.get<double>(), 5000.0);
+    QCOMPARE(doc["provenance"]["support_source"].get<std::string>(), std::string("support.stl"));
+    QVERIFY(window.draft().validate().empty());
   }
 
   // A text file named .nrrd: one line in the dialog, nothing to use, the draft as it was.
