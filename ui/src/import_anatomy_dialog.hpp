@@ -48,6 +48,8 @@ class ImportAnatomyDialog : public QDialog {
   QWidget* path_row(QLineEdit*& edit, const QString& name, const QString& title, const QString& filter);
   void input_changed();
   void table_choice_changed();
+  /// The table file's row or the mapping table, as the label table choice asks.
+  void show_table_rows();
   /// Reads the volume once and lists its labels in the mapping table; false on error.
   bool read_labels();
   /// The request from the controls; false with the reason on the error line.

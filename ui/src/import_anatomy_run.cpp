@@ -39,20 +39,23 @@ void ImportAnatomyDialog::input_changed() {
   const auto kind = anatomy_io::input_kind(to_path(path_->text()));
   volume_box_->setVisible(kind == anatomy_io::InputKind::LabelVolume);
   mesh_box_->setVisible(kind == anatomy_io::InputKind::Mesh);
-  table_choice_changed();
+  show_table_rows();
   forget_import();
 }
 
-void ImportAnatomyDialog::table_choice_changed() {
+void ImportAnatomyDialog::show_table_rows() {
   const QString choice = table_choice_->currentData().toString();
   table_file_row_->setVisible(choice == "file");
   if (auto* form = qobject_cast<QFormLayout*>(volume_box_->layout())) {
     if (QWidget* label = form->labelForField(table_file_row_)) label->setVisible(choice == "file");
   }
   map_->setVisible(choice == "map");
-  if (choice == "map" && volume_box_->isVisibleTo(this) && mapped_path_ != path_->text().trimmed().toStdString()) {
-    read_labels();
-  }
+}
+
+void ImportAnatomyDialog::table_choice_changed() {
+  show_table_rows();
+  // The volume is read when "Map labels…" is chosen or the path is finished, not per keystroke.
+  if (table_choice_->currentData().toString() == "map" && volume_box_->isVisibleTo(this)) read_labels();
   forget_import();
 }
 
