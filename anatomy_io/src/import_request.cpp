@@ -137,7 +137,6 @@ ImportedCase import_anatomy(const ImportRequest& request) {
   anatomy::Provenance provenance;
   provenance.source = file_name(request.input);
   provenance.command = request.command;
-  provenance.tool = request.tool;
   ImportedCase out;
   switch (input_kind(request.input)) {
     case InputKind::LabelVolume:
@@ -154,6 +153,8 @@ ImportedCase import_anatomy(const ImportRequest& request) {
   provenance.sha256 = file_sha256(request.input);
   const std::string title = request.title.empty() ? "Imported from " + provenance.source : request.title;
   out.file = anatomy::make_case(out.result, provenance, title, request.region);
+  // "provenance" is a field other tools keep as written: naming the tool needs no revalidation.
+  out.file.document["provenance"]["tool"] = request.tool;
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.read_seconds = std::max(0.0, total - out.result.seconds);
   return out;

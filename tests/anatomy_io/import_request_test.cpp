@@ -35,6 +35,7 @@ TEST(ImportRequest, InMemoryTableGivesTheSameCaseAsTheTableItCopies) {
   EXPECT_EQ(b.file.document["provenance"]["labels"], "labels mapped by hand");
   EXPECT_EQ(b.file.document["provenance"]["tool"], "palpa instructor window");
   EXPECT_EQ(a.file.document["provenance"]["tool"], "palpa-cli import");
+  EXPECT_EQ(io::to_json(b.file)["provenance"]["tool"], "palpa instructor window");  // what saving writes
 }
 
 TEST(ImportRequest, InMemoryTableIsCheckedAsATableFile) {

@@ -39,7 +39,7 @@ json lesions(const ImportResult& r) {
 }
 
 json provenance_json(const ImportResult& r, const Provenance& p) {
-  json out{{"tool", p.tool},
+  json out{{"tool", "palpa-cli import"},
            {"palpa_version", kVersion},
            {"source", p.source},
            {"sha256", p.sha256},

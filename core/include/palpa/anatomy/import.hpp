@@ -61,7 +61,6 @@ std::vector<Lesion> find_lesions(const LabelVolume& volume, const LabelTable& ta
 
 /// Where the case came from, written as the case's "provenance" (docs/case-format.md).
 struct Provenance {
-  std::string tool = "palpa-cli import";  ///< what made the case (the instructor window says so)
   std::string source;         ///< the input file's name (no folders)
   std::string sha256;         ///< of the input file's bytes
   std::string support_source; ///< the support mesh's name, if any
