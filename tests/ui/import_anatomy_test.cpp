@@ -27,6 +27,7 @@
 #include <vtkPolyData.h>
 #include <vtkScalarBarActor.h>
 
+#include "../../ui/src/import_label_map.hpp"
 #include "../../ui/src/import_preview.hpp"
 #include "../core/anatomy/analytic_bodies.hpp"
 #include "../core/anatomy/analytic_meshes.hpp"
@@ -258,6 +259,20 @@ class ImportAnatomyTest : public QObject {
     for (const auto& e : doc["bodies"][0]["modulus"]) QCOMPARE(e.get<double>(), 5000.0);
     QCOMPARE(doc["provenance"]["support_source"].get<std::string>(), std::string("support.stl"));
     QVERIFY(window.draft().validate().empty());
+  }
+
+  // A mapping of many labels is recorded whole entries at a time, within what a case's
+  // provenance keeps (1024 characters).
+  void aLongMappingStaysWithinTheProvenanceLimit() {
+    palpa::ui::LabelMapTable map;
+    std::map<int, std::size_t> counts;
+    for (int label = 0; label < 300; ++label) counts[label] = 10;
+    map.set_labels(counts);
+    QCOMPARE(map.rowCount(), 300);
+    const std::string text = map.describe();
+    QVERIFY2(text.size() <= 900 && text.size() > 800, text.c_str());
+    QVERIFY(text.rfind("; ...") == text.size() - 5);
+    QCOMPARE(map.table().labels.size(), std::size_t{300});
   }
 
   // A text file named .nrrd: one line in the dialog, nothing to use, the draft as it was.

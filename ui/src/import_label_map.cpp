@@ -103,12 +103,14 @@ anatomy::LabelTable LabelMapTable::table() const {
   return out;
 }
 
-std::string LabelMapTable::describe() const {
+std::string LabelMapTable::describe(std::size_t max_bytes) const {
   std::string out;
   for (const auto& [label, e] : table().labels) {
-    if (!out.empty()) out += "; ";
-    out += fmt::format("{} {}", label, anatomy::to_string(e.kind));
-    if (anatomy::LabelTable::soft(e.kind)) out += fmt::format(" \"{}\" {:g} kPa", e.name, e.modulus / 1e3);
+    std::string entry = fmt::format("{} {}", label, anatomy::to_string(e.kind));
+    if (anatomy::LabelTable::soft(e.kind)) entry += fmt::format(" \"{}\" {:g} kPa", e.name, e.modulus / 1e3);
+    // Whole entries only, so that a name's UTF-8 is never cut.
+    if (out.size() + entry.size() + 6 > max_bytes) return out + "; ...";
+    out += (out.empty() ? "" : "; ") + entry;
   }
   return out;
 }

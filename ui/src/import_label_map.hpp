@@ -25,8 +25,9 @@ class LabelMapTable : public QTableWidget {
   void set_labels(const std::map<int, std::size_t>& counts);
   /// The table the rows give (moduli in Pa), named "labels mapped by hand".
   anatomy::LabelTable table() const;
-  /// The mapping in one line, for the case's provenance: "0 outside; 1 tissue "fat" 3.24 kPa; ...".
-  std::string describe() const;
+  /// The mapping in one line, for the case's provenance: "0 outside; 1 tissue "fat" 3.24 kPa; ...",
+  /// at most `max_bytes` long (whole entries, then "; ..."): the case keeps 1024 characters.
+  std::string describe(std::size_t max_bytes = 900) const;
 
  private:
   void add_row(int row, int label, std::size_t voxels);
