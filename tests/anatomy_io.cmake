@@ -6,6 +6,7 @@ add_executable(anatomy_io_tests
   anatomy_io/refusal_test.cpp
   anatomy_io/mesh_test.cpp
   anatomy_io/vtk_interop_test.cpp
+  anatomy_io/import_request_test.cpp
 )
 # VTK's NIfTI writer (IOImage, found at the top level) as an independent writer of the files
 # the reader reads.

@@ -2,9 +2,10 @@
 # when PALPA_BUILD_GUI is on, after ui.cmake, which finds xvfb-run).
 add_executable(ui_instructor_tests
   ui/instructor_window_test.cpp
+  ui/import_anatomy_test.cpp  # Case > Import anatomy…, run from the same main
 )
 set_target_properties(ui_instructor_tests PROPERTIES AUTOMOC ON)
-target_link_libraries(ui_instructor_tests PRIVATE palpa_ui Qt5::Test)
+target_link_libraries(ui_instructor_tests PRIVATE palpa_ui palpa_anatomy_io Qt5::Test)
 target_compile_definitions(ui_instructor_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                        PALPA_GUI_EXE="$<TARGET_FILE:palpa>")
 vtk_module_autoinit(TARGETS ui_instructor_tests MODULES ${VTK_LIBRARIES})

@@ -30,7 +30,7 @@ bool ends_with(const std::string& s, const std::string& tail) {
 std::string file_name(const std::filesystem::path& path) { return path.filename().string(); }
 
 anatomy::ImportResult import_mesh(const ImportRequest& r, anatomy::Provenance& provenance) {
-  if (!r.labels.empty()) throw ImportError("--labels: a mesh has no labels; give its tissue with --modulus PA");
+  if (!r.labels.empty() || r.table) throw ImportError("--labels: a mesh has no labels; give its tissue with --modulus PA");
   if (!(r.modulus > 0.0)) throw ImportError("--modulus: a mesh needs the tissue's Young's modulus in Pa (e.g. 3240)");
   if (r.support.empty() == !r.support_plane.has_value()) {
     throw ImportError("a mesh needs exactly one of --support SUPPORT_MESH and --support-plane \"nx,ny,nz,d\"");
@@ -51,12 +51,37 @@ anatomy::ImportResult import_mesh(const ImportRequest& r, anatomy::Provenance& p
   return anatomy::import_surfaces(skin, support, r.modulus, options, file_name(r.input), file_name(r.support));
 }
 
+// An in-memory table passes the checks parse_label_table makes of a file's entries.
+void check_table(const anatomy::LabelTable& table) {
+  if (table.labels.empty() || table.labels.size() > anatomy::kMaxLabels) {
+    throw ImportError(fmt::format("{}: from 1 to {} labels", table.name, anatomy::kMaxLabels));
+  }
+  for (const auto& [label, entry] : table.labels) {
+    if (label < 0 || label > 65535) throw ImportError(fmt::format("{}: label {}: not in 0..65535", table.name, label));
+    if (entry.name.size() > anatomy::kMaxLabelNameLength) {
+      throw ImportError(fmt::format("{}: label {}: a name of at most {} characters", table.name, label,
+                                    anatomy::kMaxLabelNameLength));
+    }
+    const bool soft = anatomy::LabelTable::soft(entry.kind);
+    if (soft && !(entry.modulus > 0.0 && entry.modulus <= io::CaseLimits::kMaxModulus)) {
+      throw ImportError(fmt::format("{}: label {} ({}): {} needs a Young's modulus above 0 and at most {:g} Pa",
+                                    table.name, label, entry.name, anatomy::to_string(entry.kind),
+                                    io::CaseLimits::kMaxModulus));
+    }
+    if (!(entry.stiffening >= 0.0 && entry.stiffening <= io::CaseLimits::kMaxStiffening)) {
+      throw ImportError(fmt::format("{}: label {} ({}): the stiffening must be in [0, {:g}]", table.name, label, entry.name,
+                                    io::CaseLimits::kMaxStiffening));
+    }
+  }
+}
+
 anatomy::ImportResult import_volume(const ImportRequest& r, anatomy::Provenance& provenance) {
-  if (r.labels.empty()) throw ImportError("--labels: a label volume needs its label table: TABLE.json, victre or generic");
+  if (r.labels.empty() && !r.table) throw ImportError("--labels: a label volume needs its label table: TABLE.json, victre or generic");
   if (!r.support.empty() || r.support_plane || r.modulus > 0.0) {
     throw ImportError("--support, --support-plane and --modulus are for meshes; a label volume's table gives its tissue");
   }
-  const anatomy::LabelTable table = load_label_table(r.labels);
+  if (r.table) check_table(*r.table);
+  const anatomy::LabelTable table = r.table ? *r.table : load_label_table(r.labels);
   provenance.labels = table.name;
   const anatomy::LabelVolume volume = read_label_volume(r.input);
   return anatomy::import_label_volume(volume, table, {r.rows, r.cols, "body"}, file_name(r.input));
@@ -128,6 +153,8 @@ ImportedCase import_anatomy(const ImportRequest& request) {
   provenance.sha256 = file_sha256(request.input);
   const std::string title = request.title.empty() ? "Imported from " + provenance.source : request.title;
   out.file = anatomy::make_case(out.result, provenance, title, request.region);
+  // "provenance" is a field other tools keep as written: naming the tool needs no revalidation.
+  out.file.document["provenance"]["tool"] = request.tool;
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.read_seconds = std::max(0.0, total - out.result.seconds);
   return out;

@@ -256,6 +256,7 @@ void InstructorWindow::build_actions() {
   connect(overlay_, &QAction::toggled, this, &InstructorWindow::set_stiffness_overlay);
 
   file->addAction(tr("Import stiffness &map…"), this, &InstructorWindow::import_dialog);
+  file->addAction(tr("Import anatom&y…"), this, &InstructorWindow::import_anatomy_dialog);
   auto* try_action = file->addAction(tr("&Try it"), this, [this] { (void)try_it(); });
   try_action->setShortcut(QKeySequence(QStringLiteral("F5")));  // Ctrl+T is the File menu's "Train on a case"
 

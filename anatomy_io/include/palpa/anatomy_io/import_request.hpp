@@ -21,6 +21,10 @@ InputKind input_kind(const std::filesystem::path& path);
 struct ImportRequest {
   std::filesystem::path input;          ///< the label volume, the skin mesh or the closed mesh
   std::string labels;                   ///< a label volume's table: "victre", "generic" or a .json file
+  /// A label volume's table held in memory (e.g. mapped by hand in the instructor window):
+  /// used instead of `labels` when set, checked as a table file would be (a modulus > 0 Pa
+  /// for tissue, skin and lesion; names of at most kMaxLabelNameLength characters).
+  std::optional<anatomy::LabelTable> table;
   std::filesystem::path support;        ///< the support mesh (with a skin mesh)
   std::optional<std::array<double, 4>> support_plane;  ///< nx, ny, nz, d (d in the mesh's units)
   double modulus = 0.0;                 ///< Pa: a mesh's tissue
@@ -29,6 +33,7 @@ struct ImportRequest {
   std::string title;                    ///< empty: "Imported from NAME"
   anatomy::ExamRegion region = anatomy::ExamRegion::FreeSurface;
   std::string command;                  ///< the options as given, for the provenance
+  std::string tool = "palpa-cli import";  ///< what asked, for the provenance
 };
 
 struct ImportedCase {

@@ -4,7 +4,8 @@
 // clicking the body with their depth, size, stiffness and randomization rule, a
 // stiffness overlay, stiffness maps imported from images, undo/redo, New/Open/Save with
 // the validation problems listed by JSON pointer and the offending control highlighted,
-// and "Try it", which opens the case in a trainee window. The case itself is
+// "Import anatomy…" (a case fitted to segmented anatomy, previewed before it replaces the
+// draft), and "Try it", which opens the case in a trainee window. The case itself is
 // author::CaseDraft (core); this window only shows it and turns controls into its edits.
 #include <filesystem>
 #include <functional>
@@ -145,6 +146,10 @@ class InstructorWindow : public QMainWindow {
   QString choose_save_path();
   void open_dialog();
   void import_dialog();
+  /// Case > Import anatomy…: segmented anatomy imported and previewed in a dialog; "Use
+  /// this case" makes it the draft (ui/src/import_anatomy_dialog.hpp).
+  void import_anatomy_dialog();
+  void use_imported_case(const io::CaseFile& file);
 
   author::CaseDraft draft_;
   VtkView* view_ = nullptr;
