@@ -91,6 +91,12 @@ void AppWindows::add_menus(QMainWindow& window) {
   connect(menu, &ui::ModeMenu::train, this, [this, w = &window](const QString& path) { open_trainee(path, w); });
   connect(menu, &ui::ModeMenu::review, this, [this, w = &window](const QString& path) { open_review(path, w); });
   connect(menu, &ui::ModeMenu::author, this, [this, w = &window](const QString& path) { open_instructor(path, w); });
+  // File > Import anatomy…: in this window when it is the instructor's, else in a new one.
+  connect(menu, &ui::ModeMenu::import_anatomy, this, [this, w = &window] {
+    auto* instructor = qobject_cast<ui::InstructorWindow*>(w);
+    if (instructor == nullptr) instructor = qobject_cast<ui::InstructorWindow*>(open_instructor(QString(), w));
+    if (instructor != nullptr) instructor->import_anatomy_dialog();
+  });
   add_device_menu(window);
 }
 

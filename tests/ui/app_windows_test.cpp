@@ -3,6 +3,7 @@
 // names it, without closing what is open.
 #include <QAction>
 #include <QApplication>
+#include <QDialog>
 #include <QFile>
 #include <QMenu>
 #include <QMenuBar>
@@ -124,6 +125,42 @@ class AppWindowsTest : public QObject {
     // Each exercise records its own session file under $XDG_DATA_HOME/palpa/sessions.
     const QDir dir(sessions_.path() + "/palpa/sessions");
     QCOMPARE(dir.entryList({"*.palpa"}, QDir::Files).size(), 2);
+  }
+
+  // File > Import anatomy… (docs/anatomy-import.md): from a trainee's window it opens an
+  // instructor window with the import dialog; from an instructor's window, the dialog there.
+  void fileMenuImportsAnatomyInTheInstructorWindow() {
+    palpa::gui::AppWindows app({"ui-test", 3, {}, {}});
+    auto* trainee = app.open_trainee(kDefaultCase);
+    QVERIFY2(trainee, qPrintable(app.last_error()));
+    QVERIFY(QTest::qWaitForWindowExposed(trainee));
+    const auto import_dialog = [] {
+      for (int tries = 0; tries < 100; ++tries) {
+        for (auto* w : QApplication::topLevelWidgets()) {
+          auto* d = qobject_cast<QDialog*>(w);
+          if (d && d->objectName() == "importAnatomyDialog" && d->isVisible()) return d;
+        }
+        QTest::qWait(20);
+      }
+      return static_cast<QDialog*>(nullptr);
+    };
+    trainee->findChild<palpa::ui::ModeMenu*>()->import_anatomy_action()->trigger();
+    QCOMPARE(open_windows<palpa::ui::InstructorWindow>(), 1);
+    QDialog* dialog = import_dialog();
+    QVERIFY(dialog);
+    dialog->reject();
+    QTRY_VERIFY(!dialog->isVisible());
+    palpa::ui::InstructorWindow* instructor = nullptr;
+    for (auto* w : QApplication::topLevelWidgets()) {
+      if (auto* i = qobject_cast<palpa::ui::InstructorWindow*>(w)) instructor = i;
+    }
+    QVERIFY(instructor);
+    instructor->findChild<palpa::ui::ModeMenu*>()->import_anatomy_action()->trigger();
+    QCOMPARE(open_windows<palpa::ui::InstructorWindow>(), 1);
+    dialog = import_dialog();
+    QVERIFY(dialog);
+    QVERIFY(dialog->parentWidget() == nullptr || dialog->window() == dialog);
+    dialog->reject();
   }
 
   void deviceMenuListsTheVirtualDeviceAndAMissingDeviceIsRefused() {

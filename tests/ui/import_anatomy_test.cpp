@@ -1,4 +1,5 @@
-// Case > Import anatomy… in the instructor window, driven as a person does: the menu
+// Import anatomy… in the instructor window (its Case menu; File > Import anatomy… is
+// tested from the application's windows in app_windows_test.cpp), driven as a person does: the menu
 // action, the path typed into the dialog, the label table chosen with the keyboard, the
 // dialog's buttons clicked. A dome of tissue (label 1) on a support (3) with a lesion ball
 // (4), 2 mm voxels (tests/core/anatomy/analytic_bodies.hpp): the generic table and the same

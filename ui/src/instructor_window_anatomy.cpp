@@ -1,4 +1,4 @@
-// Case > Import anatomy…: the dialog (ui/src/import_anatomy_dialog.hpp) imports and
+// File > Import anatomy… (and Case > Import anatomy…): the dialog (ui/src/import_anatomy_dialog.hpp) imports and
 // previews; "Use this case" makes the imported case the draft, provenance and all.
 #include <QFileInfo>
 

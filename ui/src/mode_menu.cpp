@@ -25,6 +25,7 @@ ModeMenu::ModeMenu(QMainWindow& window) : QObject(&window) {
   file->addSeparator();
   new_case_ = file->addAction(tr("&New case (instructor)"));
   author_ = file->addAction(tr("&Author a case..."));
+  import_anatomy_ = file->addAction(tr("&Import anatomy…"));
   file->addSeparator();
   review_ = file->addAction(tr("&Review a session..."));
   review_->setShortcut(QKeySequence(tr("Ctrl+R")));
@@ -41,6 +42,7 @@ ModeMenu::ModeMenu(QMainWindow& window) : QObject(&window) {
     const QString path = choose_file(tr("Author a case"), kCaseFilter);
     if (!path.isEmpty()) emit author(path);
   });
+  connect(import_anatomy_, &QAction::triggered, this, [this] { emit import_anatomy(); });
   connect(review_, &QAction::triggered, this, [this] {
     const QString path = choose_file(tr("Review a session"), kSessionFilter);
     if (!path.isEmpty()) emit review(path);

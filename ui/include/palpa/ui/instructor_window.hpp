@@ -85,6 +85,11 @@ class InstructorWindow : public QMainWindow {
   /// The last message shown in the status bar (errors included).
   const QString& message() const { return message_; }
 
+  /// File > Import anatomy… (and the Case menu's): segmented anatomy imported and
+  /// previewed in a dialog; "Use this case" makes it the draft
+  /// (ui/src/import_anatomy_dialog.hpp).
+  void import_anatomy_dialog();
+
  public slots:
   /// Opens a case for editing. A file that is JSON but not a valid case opens with its
   /// problems listed; one that cannot be read or is not JSON leaves the current case and
@@ -146,9 +151,6 @@ class InstructorWindow : public QMainWindow {
   QString choose_save_path();
   void open_dialog();
   void import_dialog();
-  /// Case > Import anatomy…: segmented anatomy imported and previewed in a dialog; "Use
-  /// this case" makes it the draft (ui/src/import_anatomy_dialog.hpp).
-  void import_anatomy_dialog();
   void use_imported_case(const io::CaseFile& file);
 
   author::CaseDraft draft_;

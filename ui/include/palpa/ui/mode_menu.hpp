@@ -24,6 +24,7 @@ class ModeMenu : public QObject {
 
   QAction* train_action() const { return train_; }
   QAction* author_action() const { return author_; }
+  QAction* import_anatomy_action() const { return import_anatomy_; }
   QAction* new_case_action() const { return new_case_; }
   QAction* review_action() const { return review_; }
 
@@ -32,12 +33,16 @@ class ModeMenu : public QObject {
   void train(const QString& case_path);
   /// Edit this case in the instructor's editor; an empty path starts a new case.
   void author(const QString& case_path);
+  /// File > Import anatomy…: segmented anatomy to a case, in the instructor window
+  /// (docs/anatomy-import.md).
+  void import_anatomy();
   /// Replay this recorded session.
   void review(const QString& session_path);
 
  private:
   QAction* train_ = nullptr;
   QAction* author_ = nullptr;
+  QAction* import_anatomy_ = nullptr;
   QAction* new_case_ = nullptr;
   QAction* review_ = nullptr;
 };
