@@ -4,7 +4,7 @@
 # Builds the fuzz preset (clang) and runs each target for SECONDS over its corpus
 # (fuzz/corpus/TARGET, not written to: new inputs go to build/fuzz/found/TARGET), two at a
 # time. A crash, a sanitizer report, a leak, an input over 10 s or 2 GB leaves the input in
-# build/fuzz/artifacts/ and fails the script. CI runs it with 30 s; the long run is
+# build/fuzz/artifacts/ and fails the script. CI runs it with 20 s; the long run is
 # scripts/fuzz.sh 3600.
 set -euo pipefail
 cd "$(dirname "$0")/.."
