@@ -1,5 +1,7 @@
 #include "import_preview.hpp"
 
+#include "mesh_polydata.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -30,40 +32,6 @@ namespace palpa::ui {
 namespace {
 
 constexpr double kTolerance = 2e-4;  // m, tessellation error, as the instructor's view
-
-// A polydata from core's mesh, with the per-vertex values as its scalars when given.
-vtkSmartPointer<vtkPolyData> to_polydata(const render::Mesh& mesh, const std::vector<float>* values) {
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  const auto n = static_cast<vtkIdType>(mesh.vertex_count());
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetNumberOfComponents(3);
-  normals->SetName("Normals");
-  normals->SetNumberOfTuples(n);
-  for (vtkIdType v = 0; v < n; ++v) {
-    const auto k = static_cast<std::size_t>(3 * v);
-    points->SetPoint(v, mesh.positions[k], mesh.positions[k + 1], mesh.positions[k + 2]);
-    normals->SetTuple3(v, mesh.normals[k], mesh.normals[k + 1], mesh.normals[k + 2]);
-  }
-  vtkNew<vtkCellArray> cells;
-  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-    const vtkIdType ids[3] = {mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]};
-    cells->InsertNextCell(3, ids);
-  }
-  data->SetPoints(points);
-  data->GetPointData()->SetNormals(normals);
-  data->SetPolys(cells);
-  if (values) {
-    vtkNew<vtkFloatArray> scalars;
-    scalars->SetName("fit error (mm)");
-    scalars->SetNumberOfTuples(n);
-    for (vtkIdType v = 0; v < n; ++v) scalars->SetValue(v, (*values)[static_cast<std::size_t>(v)]);
-    data->GetPointData()->SetScalars(scalars);
-  }
-  return data;
-}
 
 // mm from each vertex to the input free surface (NaN where the input has none).
 std::vector<float> fit_errors(const anatomy::SurfacePair& surfaces, const render::Mesh& mesh) {
@@ -183,7 +151,7 @@ void ImportPreview::draw_top(const anatomy_io::ImportedCase& imported) {
   }
   lut_->SetTableRange(0.0, hi);
   lut_->Build();
-  top_ = to_polydata(top, &errors);
+  top_ = mesh_polydata(top, &errors, "fit error (mm)");
   top_actor_ = surface_actor(top_, lut_);
   renderer_->AddActor(top_actor_);
   legend_->VisibilityOn();

@@ -1,5 +1,7 @@
 #include "palpa/ui/instructor_scene.hpp"
 
+#include "mesh_polydata.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,40 +30,6 @@ namespace palpa::ui {
 namespace {
 
 constexpr double kTolerance = 2e-4;  // m, tessellation error
-
-// A polydata from core's mesh, with per-vertex stiffness (N/m) when `stiffness` is given.
-vtkSmartPointer<vtkPolyData> to_polydata(const render::Mesh& mesh, const std::vector<float>* stiffness) {
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  const auto n = static_cast<vtkIdType>(mesh.vertex_count());
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetNumberOfComponents(3);
-  normals->SetName("Normals");
-  normals->SetNumberOfTuples(n);
-  for (vtkIdType v = 0; v < n; ++v) {
-    const auto k = static_cast<std::size_t>(3 * v);
-    points->SetPoint(v, mesh.positions[k], mesh.positions[k + 1], mesh.positions[k + 2]);
-    normals->SetTuple3(v, mesh.normals[k], mesh.normals[k + 1], mesh.normals[k + 2]);
-  }
-  vtkNew<vtkCellArray> cells;
-  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-    const vtkIdType ids[3] = {mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]};
-    cells->InsertNextCell(3, ids);
-  }
-  data->SetPoints(points);
-  data->GetPointData()->SetNormals(normals);
-  data->SetPolys(cells);
-  if (stiffness) {
-    vtkNew<vtkFloatArray> k;
-    k->SetName("Stiffness");
-    k->SetNumberOfTuples(n);
-    for (vtkIdType v = 0; v < n; ++v) k->SetValue(v, (*stiffness)[static_cast<std::size_t>(v)]);
-    data->GetPointData()->SetScalars(k);
-  }
-  return data;
-}
 
 // The skeleton's stiffness at each vertex of a contour mesh: vertex (i, j) lies over
 // SK(us[i], vs[j]) (a contour and its skeleton share their parameters).
@@ -166,7 +134,7 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
         for (float x : k) range_ = {std::min<double>(range_[0], x), std::max<double>(range_[1], x)};
       }
       Surface s;
-      s.data = to_polydata(mesh, side == 0 ? &k : nullptr);
+      s.data = mesh_polydata(mesh, side == 0 ? &k : nullptr, "Stiffness");
       vtkNew<vtkPolyDataMapper> mapper;
       mapper->SetInputData(s.data);
       mapper->SetLookupTable(lut_);
