@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -61,6 +62,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A mesh import's body: fitted to its surfaces, of one tissue.
+ImportResult uniform_body(SurfacePair surfaces, double modulus, const ImportOptions& options,
+                          std::chrono::steady_clock::time_point start) {
+  ImportResult result;
+  result.surfaces = std::move(surfaces);
+  result.body = fit(result.surfaces, options);
+  uniform_tissue(result.body, modulus);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
 }  // namespace
 
 ImportResult import_label_volume(const LabelVolume& volume, const LabelTable& table, const ImportOptions& options,
@@ -84,23 +96,13 @@ ImportResult import_surfaces(const TriangleMesh& skin, const TriangleMesh& suppo
                              const ImportOptions& options, const std::string& skin_source,
                              const std::string& support_source) {
   const auto start = std::chrono::steady_clock::now();
-  ImportResult result;
-  result.surfaces = surfaces_from_meshes(skin, support, skin_source, support_source);
-  result.body = fit(result.surfaces, options);
-  uniform_tissue(result.body, modulus);
-  result.seconds = seconds_since(start);
-  return result;
+  return uniform_body(surfaces_from_meshes(skin, support, skin_source, support_source), modulus, options, start);
 }
 
 ImportResult import_closed_mesh(const TriangleMesh& mesh, const Vec3& normal, double offset, double modulus,
                                 const ImportOptions& options, const std::string& source) {
   const auto start = std::chrono::steady_clock::now();
-  ImportResult result;
-  result.surfaces = surfaces_from_closed_mesh(mesh, normal, offset, source);
-  result.body = fit(result.surfaces, options);
-  uniform_tissue(result.body, modulus);
-  result.seconds = seconds_since(start);
-  return result;
+  return uniform_body(surfaces_from_closed_mesh(mesh, normal, offset, source), modulus, options, start);
 }
 
 }  // namespace palpa::anatomy
