@@ -16,6 +16,7 @@ packages=(
   pkg-config libhidapi-dev libusb-1.0-0-dev
   postgresql libpq-dev  # store/: the centre store (libpq; the server for its tests)
   libcurl4-openssl-dev  # lrs/: xAPI statements to a learning record store
+  libssl-dev zlib1g-dev  # SHA-256 (store/, anatomy_io/) and gzip (sessions, NIfTI and NRRD), named rather than left to other packages' dependencies
   desktop-file-utils  # packaging test: desktop-file-validate on the menu entry (dpkg-dev comes with build-essential)
   gmsh calculix-ccx python3-numpy python3-scipy  # the finite-element reference (tools/fem) and its tests
   clang libclang-rt-14-dev  # the fuzz targets: libFuzzer with ASan + UBSan (scripts/fuzz.sh)
