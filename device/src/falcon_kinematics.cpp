@@ -76,7 +76,17 @@ std::optional<Vec3> Kinematics::forward(const Angles& angles, const Vec3& guess)
     const Vec3 step = lu.solve(residual);
     p -= step;
     if (!p.allFinite()) return std::nullopt;
-    if (step.norm() < 1e-13) return p;
+    if (step.norm() < 1e-13) {
+      // Newton also settles where no arm is: where loop() clamps a shin past its reach
+      // (|cos t3| > 1) or on the knee folded back through the base. Only a point whose
+      // inverse gives these angles back (up to whole turns) is the grip.
+      const auto back = inverse(p);
+      if (!back) return std::nullopt;
+      for (int i = 0; i < 3; ++i) {
+        if (!(std::abs(std::remainder((*back)[i] - angles[i], 2.0 * kPi)) < 1e-9)) return std::nullopt;
+      }
+      return p;
+    }
   }
   return std::nullopt;
 }

@@ -58,6 +58,25 @@ TEST(FalconKinematics, ReachIsLimited) {
   EXPECT_FALSE(kin.jacobian(Vec3(0.0, 0.0, 0.5)));
 }
 
+TEST(FalconKinematics, ForwardFindsNoGripForAnglesNoArmCanTake) {
+  // Thighs at 144, -74 and 144 degrees (encoder counts 3000, -3000, 3000): from about two
+  // in five of these guesses Newton's method used to settle on a point where a shin is
+  // stretched past its length (loop() clamps it) and return it as the grip. The driver must
+  // see no position there: it counts the misses and reports the fault.
+  const Kinematics kin;
+  const Angles impossible(encoder_to_angle(3000), encoder_to_angle(-3000), encoder_to_angle(3000));
+  for (const auto& guess : workspace_points()) {
+    EXPECT_FALSE(kin.forward(impossible, guess)) << guess.transpose();
+  }
+  // A whole turn of a thigh is the same pose: still found.
+  const Vec3 p = Kinematics::workspace_center() + Vec3(0.01, 0.02, -0.01);
+  Angles turned = *kin.inverse(p);
+  turned[1] += 2.0 * 3.14159265358979323846;
+  const auto q = kin.forward(turned, Kinematics::workspace_center());
+  ASSERT_TRUE(q);
+  EXPECT_LT((*q - p).norm(), 1e-12);
+}
+
 TEST(FalconKinematics, TheJacobianIsTheDerivativeOfTheForwardKinematics) {
   const Kinematics kin;
   const double h = 1e-6;  // rad

@@ -52,7 +52,8 @@ class Kinematics {
   /// Closed form; empty when the position is out of reach.
   std::optional<Angles> inverse(const Vec3& position) const;
   /// Newton's method from `guess` (the last position: at 1 kHz it is a few micrometres
-  /// off, so two or three steps reach 1e-12 m). Empty when it does not converge.
+  /// off, so two or three steps reach 1e-12 m). Empty when it does not converge, or
+  /// converges to a point whose inverse() is not `angles` (angles no arm can take).
   std::optional<Vec3> forward(const Angles& angles, const Vec3& guess) const;
   /// J = dp/dtheta at `position` (m per rad); empty out of reach or at a singularity.
   std::optional<Mat3> jacobian(const Vec3& position) const;
