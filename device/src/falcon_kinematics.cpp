@@ -54,8 +54,9 @@ std::optional<Angles> Kinematics::inverse(const Vec3& p) const {
     const double rho = std::hypot(big_a, big_b);
     if (!(rho > 0.0) || std::abs(k) > rho) return std::nullopt;
     // Two knee positions close the loop; the Falcon's is the root with the smaller angle
-    // (about 35 degrees at the middle of the workspace, where the encoders read 0; the
-    // other folds the thigh back through the base, beyond 120 degrees).
+    // (about 24 degrees at the middle of the workspace; the encoders' zero, 35 degrees, is
+    // on the axis about 15 mm nearer the user; the other root folds the thigh back through
+    // the base, beyond 140 degrees everywhere in the workspace).
     out[i] = std::atan2(big_b, big_a) - std::acos(k / rho);
   }
   return out;

@@ -14,10 +14,18 @@
 // dp/dtheta comes from differentiating them, and the motor torques for a force F at the
 // grip are J^T F (virtual work).
 //
-// Constants: the Falcon's dimensions as published by libnifalcon (include/falcon/core/
-// FalconGeometry.h, "values refer to a diagram from R.E. Stamper, page 30"): a = 0.060,
-// b = 0.1025, c = 0.014, d = e = 0.01125, f = -0.025, r = 0.037233758, s = -0.027330909 (m);
-// legs at phi = 90, -30 and -150 degrees, each plus a 15-degree tilt of the axes. Encoders:
+// Constants: the Falcon's dimensions as libnifalcon publishes them since release 1.0.1
+// (2009-09-20; unchanged in 1.1 and since) in include/falcon/core/FalconGeometry.h ("values
+// refer to a diagram from R.E. Stamper, page 30"): a = 0.060, b = 0.1025, c = 0.01443,
+// d = e = 0.01125, f = -0.025, r = 0.0400, s = -0.02309 (m). Release 1.0 had c = 0.014,
+// r = 0.037233758, s = -0.027330909 (Palpa's values until this correction). libnifalcon
+// commit 5ca9c0bf36a1 ("Corrected values of r and s ... Tested", N. Begley, authored
+// 2009-06-23) set c = 0.01443, r = 0.02309, s = -0.0400, and commit 935a31eade4f ("Flipped
+// r/s values for geometry based on advice from Steven Martin", 2009-09-18) swapped r and s
+// to the values above; 1.0.1 shipped both. For the same thigh angles, 1.0's dimensions put
+// the grip up to 3.75 mm from where these do over the workspace sphere (1.9 mm at its
+// centre; tests/device/falcon_kinematics_test.cpp).
+// Legs at phi = 90, -30 and -150 degrees, each plus a 15-degree tilt of the axes. Encoders:
 // 320-slot wheel read in quadrature (1280 counts per motor turn), motor shaft 14.25 mm
 // driving an arm drum of 110 mm, and an encoder count of 0 at a thigh angle of 35 degrees
 // (FalconGeometry.h and FalconKinematic.h::getTheta). Torque to firmware units: 10,000 per
@@ -36,8 +44,8 @@ namespace palpa::device::falcon {
 using Mat3 = Eigen::Matrix3d;
 
 struct Geometry {
-  double a = 0.060, b = 0.1025, c = 0.014, d = 0.01125, e = 0.01125, f = -0.025;
-  double r = 0.037233758, s = -0.027330909;
+  double a = 0.060, b = 0.1025, c = 0.01443, d = 0.01125, e = 0.01125, f = -0.025;
+  double r = 0.0400, s = -0.02309;
   std::array<double, 3> phi{};  ///< rad, filled by the constructor of Kinematics
 };
 
@@ -60,8 +68,8 @@ class Kinematics {
   /// Thigh torques (N m) that push the grip with `force` (N) at `position`: J^T F.
   std::optional<Vec3> torques(const Vec3& position, const Vec3& force) const;
 
-  /// The middle of the workspace (m): the thighs at -20..59 degrees over the sphere of
-  /// kWorkspaceRadius around it, the Jacobian well conditioned (condition number < 3).
+  /// The middle of the workspace (m): the thighs at about -24..63 degrees over the sphere
+  /// of kWorkspaceRadius around it, the Jacobian well conditioned (condition number < 2.8).
   static Vec3 workspace_center() { return Vec3(0.0, 0.0, 0.12); }
   /// Radius (m) of the sphere around workspace_center() the grip reaches (about 0.04: docs/devices.md).
   static constexpr double kWorkspaceRadius = 0.04;
