@@ -2,6 +2,7 @@
 target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/foot_point.cpp
   ${CMAKE_CURRENT_LIST_DIR}/contact.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/column.cpp
   ${CMAKE_CURRENT_LIST_DIR}/force.cpp
   ${CMAKE_CURRENT_LIST_DIR}/finger.cpp
 )

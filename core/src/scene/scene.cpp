@@ -95,9 +95,11 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
       const auto& grid = file.bodies[k];
       std::optional<mat::LayerStiffnessTable> layer;
       if (!grid.modulus.empty()) layer.emplace(grid.poisson, mat::kFingertipPadRadius);
+      // A body on a support reads presses under its skeleton along its column.
+      const auto axis = body.anchored() ? contact::press_axis_of(body.skeleton()) : contact::PressAxis{};
       scene.bodies_.push_back(
           {std::move(body), std::move(search), bounds, probe_box, {}, grid.force_model, layer, grid.poisson,
-           grid.stiffening});
+           grid.stiffening, axis});
     } catch (const mat::FitError& e) {
       problems.push_back({fmt::format("/bodies/{}", k), std::string("cannot fit: ") + e.what()});
     }
@@ -142,6 +144,23 @@ Scene Scene::build(const io::CaseFile& file, const std::string& source, const ma
   return scene;
 }
 
+namespace {
+
+// A press into a body on a support: the paper's reading over the skeleton, the column's
+// under it (docs/model.md, "Under the skeleton: the column"); the mirrored reading where
+// the column misses the sheet (beyond the rim) or the body is too steep for one.
+contact::Contact supported_contact(const SceneBody& sb, const contact::Contact& nearest, const Vec3& q) {
+  const bool interior = nearest.foot.u > 0.0 && nearest.foot.u < 1.0 && nearest.foot.v > 0.0 && nearest.foot.v < 1.0;
+  // Over an interior foot point of a graph the probe is above the sheet: nothing to do.
+  if (!sb.press_axis.usable || (interior && nearest.side > 0)) return contact::top_side_contact(nearest, q);
+  const auto column = contact::column_foot_point(sb.body.skeleton(), sb.press_axis.up, q, nearest.foot.u,
+                                                 nearest.foot.v);
+  if (!column.converged || (q - column.point).dot(sb.press_axis.up) >= 0.0) return contact::top_side_contact(nearest, q);
+  return contact::column_contact(sb.body, column, q, sb.press_axis.up);
+}
+
+}  // namespace
+
 ProbeState Scene::make_state() const {
   ProbeState s;
   s.u.assign(bodies_.size(), 0.0);
@@ -178,7 +197,7 @@ ProbeResult Scene::probe(const Vec3& q, ProbeState& state, const ProbeOptions& o
     state.warm[b] = 1;
     auto c = contact::make_contact(sb.body, foot, q);
     if (sb.body.anchored()) {
-      c = contact::top_side_contact(c, q);  // only the top is touchable: no side to remember
+      c = supported_contact(sb, c, q);  // only the top is touchable: no side to remember
     } else if (options.remember_side) {
       if (!c.inside) {
         state.entry_side[b] = 0;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/contact/column.hpp"
 #include "palpa/contact/force.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/mat/layer_stiffness.hpp"
@@ -43,6 +44,9 @@ struct SceneBody {
   std::optional<mat::LayerStiffnessTable> layer;
   double poisson = 0.49;
   double stiffening = 0.0;  ///< b of a body given by its modulus (mat::BodyGrid::stiffening)
+  /// A body on a support: the axis its skeleton is a graph over, along which a press under
+  /// the skeleton is read (contact::column_contact); not usable for a free body.
+  contact::PressAxis press_axis{};
 };
 
 /// How far a tumour's sphere stays inside `body` (m): the smallest depth of its centre and
