@@ -1,6 +1,7 @@
 // palpa-cli bench contrast-modes: how clearly a tumour stands out in the two ways the mouse
 // presses. Level mode presses to a share of the thickness and reads the force; force mode
-// presses to a force and reads the depth and the tangent stiffness dF/dd. For each case
+// presses to a force and reads the depth and the apparent firmness (kPa, what the gauge
+// shows: live::apparent_firmness). For each case
 // (tumours placed with --seed) the reading over the first tumour is compared with the same
 // reading 12 mm away, on the rest scene with fresh probes (the settled press, without the
 // finger's motion).
@@ -35,7 +36,7 @@ struct Spot {
 struct Row {
   std::string case_name, mode;
   double setting = 0.0;          // share (level) or N (force)
-  double over = 0.0, away = 0.0; // the reading: N (level) or N/mm (force)
+  double over = 0.0, away = 0.0; // the reading: N (level) or kPa (force)
   double depth_over = 0.0, depth_away = 0.0;  // m
   double contrast() const { return away > 0.0 ? over / away - 1.0 : 0.0; }
 };
@@ -49,8 +50,8 @@ class Probe {
     state_.held = -1;
     return scene_->probe(f.top - depth * f.normal, state_, {}).force.total.norm();
   }
-  double stiffness(const Spot& p, double depth) {  // N/m
-    return live::tangent_stiffness(*scene_, state_, {}, 0, p.u, p.v, depth);
+  double firmness(const Spot& p, double depth) {  // Pa
+    return live::apparent_firmness(*scene_, state_, {}, 0, p.u, p.v, depth);
   }
   // The depth at which the force reaches `newtons` (bisection; the deepest press when never).
   double depth_at(const Spot& p, double newtons) {
@@ -86,15 +87,16 @@ void bench_case(const std::string& name, std::uint64_t seed, std::vector<Row>& r
   const Spot over = spot_under(s, t.center[0], t.center[1]);
   const Spot away = spot_under(s, t.center[0] + kAway * dx / d, t.center[1] + kAway * dy / d);
   Probe p(s);
+  const double top = live::deepest_plain_share(s, th, {}, live::force_bound(th));
   for (const int level : {1, 4, 7}) {  // the middle step of light, medium, deep
-    const double share = live::PressureDial(th, level).share();
+    const double share = live::PressureDial(th, level, top).share();
     Row r{name, "level", share, p.force(over, share * p.thickness(over)), p.force(away, share * p.thickness(away)),
           share * p.thickness(over), share * p.thickness(away)};
     rows.push_back(r);
   }
   for (const double newtons : {3.0, 6.0, 10.0}) {
     const double d_over = p.depth_at(over, newtons), d_away = p.depth_at(away, newtons);
-    rows.push_back({name, "force", newtons, p.stiffness(over, d_over) * 1e-3, p.stiffness(away, d_away) * 1e-3, d_over,
+    rows.push_back({name, "force", newtons, p.firmness(over, d_over) * 1e-3, p.firmness(away, d_away) * 1e-3, d_over,
                     d_away});
   }
 }
@@ -118,7 +120,7 @@ int run_bench_contrast_modes(const std::filesystem::path& out_dir, std::uint64_t
               "contrast", "depth over", "depth away");
   for (const auto& r : rows) {
     const bool level = r.mode == "level";
-    const char* unit = level ? "N" : "N/mm";
+    const char* unit = level ? "N" : "kPa";
     std::printf("%-14s %-6s %8s %9.3f %-4s %9.3f %-4s %8.1f%% %8.1f mm %7.1f mm\n", r.case_name.c_str(), r.mode.c_str(),
                 level ? fmt::format("{:.0f} %", r.setting * 100).c_str() : fmt::format("{:.0f} N", r.setting).c_str(),
                 r.over, unit, r.away, unit, r.contrast() * 100.0, r.depth_over * 1e3, r.depth_away * 1e3);

@@ -549,9 +549,17 @@ class TraineeWindowTest : public QObject {
     c.depth = 0.025;
     c.level = palpa::live::PressureLevel::Deep;
     c.force_mode = true;
-    c.stiffness = 420.0;  // N/m
+    c.stiffness = 240.0;  // N/m: 6 N over 25 mm, a body given in N/m
     g.set_contact(c);
-    QCOMPARE(g.lines()[0], QString("6.0 N  stiffness 0.42 N/mm"));
+    QCOMPARE(g.lines()[0], QString("6.0 N  stiffness 0.24 N/mm"));
+    c.firmness = 28460.0;  // Pa: a body given by its modulus reads in kPa
+    g.set_contact(c);
+    QCOMPARE(g.lines()[0], QString("6.0 N  firmness 28.5 kPa"));
+    c.thickness = 0.012;  // thinner than the finger pad is wide: the skin over the chest wall
+    g.set_contact(c);
+    QCOMPARE(g.lines()[0], QString("6.0 N  firmness 28.5 kPa (thin tissue)"));
+    c.thickness = 0.05;
+    g.set_contact(c);
     QCOMPARE(g.lines()[1], QString("deep: depth 25.0 mm (50 % of 50 mm)"));
     QCOMPARE(g.alert(), palpa::ui::ForceGauge::Alert::None);
     c.force = 18.0;
@@ -559,6 +567,12 @@ class TraineeWindowTest : public QObject {
     g.set_contact(c);
     QVERIFY2(g.lines()[0].contains("held at 18 N: the safety limit is 20 N"), qPrintable(g.text()));
     QCOMPARE(g.alert(), palpa::ui::ForceGauge::Alert::Bound);
+    c.at_force_bound = false;
+    c.frame_gap = 0.25;  // a busy computer: the window's frames come late
+    g.set_contact(c);
+    QVERIFY2(g.lines()[0].contains("computer busy: the window is 250 ms late"), qPrintable(g.text()));
+    QCOMPARE(g.alert(), palpa::ui::ForceGauge::Alert::Late);
+    c.at_force_bound = true;
     c.loop = palpa::live::LoopState::Stalled;
     g.set_contact(c);
     QVERIFY2(g.lines()[0].contains("haptic loop stalled"), qPrintable(g.text()));

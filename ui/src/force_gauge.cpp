@@ -6,6 +6,8 @@
 
 #include <QPainter>
 
+#include "palpa/live/press_control.hpp"
+
 namespace palpa::ui {
 
 namespace {
@@ -30,7 +32,8 @@ void ForceGauge::set_contact(const live::ContactInfo& contact) {
 ForceGauge::Alert ForceGauge::alert() const {
   if (contact_.loop == live::LoopState::Fault) return Alert::Fault;
   if (contact_.loop == live::LoopState::Stalled) return Alert::Stalled;
-  return contact_.at_force_bound ? Alert::Bound : Alert::None;
+  if (contact_.at_force_bound) return Alert::Bound;
+  return contact_.frame_gap > live::kLateFrame ? Alert::Late : Alert::None;
 }
 
 QColor ForceGauge::alert_colour(Alert alert) {
@@ -38,6 +41,7 @@ QColor ForceGauge::alert_colour(Alert alert) {
     case Alert::Fault: return {200, 0, 0};
     case Alert::Stalled: return {170, 100, 0};
     case Alert::Bound: return {200, 70, 0};
+    case Alert::Late: return {120, 90, 160};
     case Alert::None: break;
   }
   return Qt::black;
@@ -51,10 +55,20 @@ QString ForceGauge::force_words() const {
       return tr("held at %1 N: the safety limit is %2 N")
           .arg(contact_.force_bound, 0, 'f', 0)
           .arg(contact_.safety_limit, 0, 'f', 0);
+    case Alert::Late:
+      return tr("computer busy: the window is %1 ms late").arg(contact_.frame_gap * 1e3, 0, 'f', 0);
     case Alert::None: break;
   }
   if (contact_.level == live::PressureLevel::None) return tr("no contact");
-  if (contact_.force_mode) return tr("stiffness %1 N/mm").arg(contact_.stiffness * 1e-3, 0, 'f', 2);
+  if (contact_.force_mode) {
+    // The tissue's firmness in kPa, as a hand judges it: not the column's N/mm, which grows
+    // as the tissue thins under the finger (docs/user-guide.md, "Force mode").
+    if (contact_.firmness > 0.0 && contact_.thickness < live::kThinTissue) {
+      return tr("firmness %1 kPa (thin tissue)").arg(contact_.firmness * 1e-3, 0, 'f', 1);
+    }
+    if (contact_.firmness > 0.0) return tr("firmness %1 kPa").arg(contact_.firmness * 1e-3, 0, 'f', 1);
+    return tr("stiffness %1 N/mm").arg(contact_.stiffness * 1e-3, 0, 'f', 2);
+  }
   return live::to_string(contact_.level);
 }
 

@@ -84,7 +84,8 @@ TraineeWindow::TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const
                              QWidget* parent)
     : QMainWindow(parent),
       exercise_(std::move(exercise)),
-      dial_(exercise_->thresholds(), live::PressureDial::middle_of(live::PressureLevel::Medium)) {
+      dial_(exercise_->thresholds(), live::PressureDial::middle_of(live::PressureLevel::Medium),
+            exercise_->deepest_share()) {
   setWindowTitle(tr("Palpa: trainee exercise (%1)").arg(case_name));
   resize(1200, 760);
 

@@ -64,7 +64,9 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       meshes_(*scene_, options.engine.deform, options.tessellation),
       picker_(*scene_),
       follower_(*scene_, follower_options(options, thresholds_)),
-      stiffness_state_(scene_->make_state()) {
+      stiffness_state_(scene_->make_state()),
+      deepest_share_(deepest_plain_share(*scene_, thresholds_, follower_options(options, thresholds_).probe,
+                                         force_bound(thresholds_))) {
   if (options_.trainee.empty()) throw std::invalid_argument("trainee id must not be empty");
   // The follower stops at the bound from 60 Hz predictions; between two frames (a fast
   // slide onto a stiff lump) the virtual finger itself gives way at the haptic rate.
@@ -126,6 +128,7 @@ void LiveExercise::follow() {
   const auto now = std::chrono::steady_clock::now();
   const double dt = std::chrono::duration<double>(now - last_follow_).count();
   last_follow_ = now;
+  frame_gap_ = dt;
   const auto& s = loop_->snapshot();
   const double felt = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
   // A stalled or faulted loop reports a stale or zero force: the finger waits.
@@ -164,6 +167,7 @@ ContactInfo LiveExercise::contact() const {
   ContactInfo c;
   c.force = std::sqrt(s.force[0] * s.force[0] + s.force[1] * s.force[1] + s.force[2] * s.force[2]);
   c.loop = loop_state();
+  c.frame_gap = following_ ? frame_gap_ : 0.0;
   c.force_mode = follower_.force_target() > 0.0;
   c.force_target = follower_.force_target();
   c.force_bound = follower_.force_bound();
@@ -178,10 +182,9 @@ ContactInfo LiveExercise::contact() const {
   c.thickness = 2.0 * std::max(0.0, sk[3]);
   c.fraction = c.thickness > 0.0 ? c.depth / c.thickness : 1.0;
   c.level = level_of(c.fraction, thresholds_);
-  scene::ProbeOptions fresh = options_.engine.probe;
-  fresh.remember_side = false;
-  fresh.force.shear = false;  // the tissue's answer to pressing, not to sliding
-  c.stiffness = tangent_stiffness(*scene_, stiffness_state_, fresh, static_cast<std::size_t>(s.body), s.u, s.v, s.depth);
+  c.stiffness = c.force / s.depth;
+  c.firmness = apparent_firmness(*scene_, stiffness_state_, options_.engine.probe, static_cast<std::size_t>(s.body), s.u,
+                                 s.v, s.depth);
   return c;
 }
 

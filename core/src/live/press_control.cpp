@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace palpa::live {
 
@@ -23,7 +24,8 @@ PressureLevel level_of(double fraction, const io::Thresholds& thresholds) {
 
 double force_bound(const io::Thresholds& thresholds) { return kForceBoundShare * thresholds.max_force; }
 
-PressureDial::PressureDial(const io::Thresholds& thresholds, int index) : thresholds_(thresholds) {
+PressureDial::PressureDial(const io::Thresholds& thresholds, int index, double top)
+    : thresholds_(thresholds), top_(std::clamp(std::isfinite(top) ? top : kMaxShare, 0.0, kMaxShare)) {
   set_index(index);
 }
 
@@ -37,7 +39,7 @@ PressureLevel PressureDial::level() const {
 
 double PressureDial::share() const {
   const double light = thresholds_.light_max, deep = std::max(thresholds_.deep_min, light);
-  const double top = std::max(kMaxShare, deep);
+  const double top = std::max(top_, deep);
   const std::array<double, 4> edges{0.0, light, deep, top};
   const int band = index_ / kStepsPerLevel;
   // An eighth into the band, its middle, an eighth before its end: the first and last steps
@@ -56,6 +58,69 @@ int PressureDial::middle_of(PressureLevel level) {
   }
 }
 
+namespace {
+
+// The (body, u, v) spots of the exam region on a regular grid of each of its parts (the
+// whole top contour of every body when the case sets none).
+std::vector<std::array<double, 3>> exam_spots(const scene::Scene& scene, const io::Thresholds& thresholds) {
+  constexpr int kGrid = 13;
+  std::vector<std::array<double, 3>> spots;
+  const auto add = [&](std::size_t b, double u0, double u1, double v0, double v1) {
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j)
+        spots.push_back({static_cast<double>(b), u0 + (u1 - u0) * i / (kGrid - 1), v0 + (v1 - v0) * j / (kGrid - 1)});
+  };
+  if (thresholds.exam_region.empty()) {
+    for (std::size_t b = 0; b < scene.size(); ++b) add(b, 0.0, 1.0, 0.0, 1.0);
+  }
+  for (const auto& part : thresholds.exam_region) {
+    for (std::size_t b = 0; b < scene.size(); ++b)
+      if (scene.body(b).body.id() == part.body) add(b, part.u0, part.u1, part.v0, part.v1);
+  }
+  return spots;
+}
+
+}  // namespace
+
+double deepest_plain_share(const scene::Scene& scene, const io::Thresholds& thresholds,
+                           const scene::ProbeOptions& options, double bound, double room) {
+  const double deep = std::max(thresholds.deep_min, thresholds.light_max);
+  const double floor = std::min(PressureDial::kMaxShare, deep + (PressureDial::kMaxShare - deep) / 6.0);
+  if (!(bound > 0.0)) return PressureDial::kMaxShare;
+  auto state = scene.make_state();
+  scene::ProbeOptions fresh = options;
+  fresh.remember_side = false;
+  const double allowed = bound / (1.0 + std::max(0.0, room));
+  // The plain tissue's push-back at a spot and share: the force without the tumours' part.
+  const auto plain = [&](const std::array<double, 3>& spot, double share) {
+    const auto frame = surface_frame(scene.body(static_cast<std::size_t>(spot[0])).body, spot[1], spot[2]);
+    if (!(frame.thickness > 0.0)) return 0.0;
+    std::fill(state.warm.begin(), state.warm.end(), 0);
+    state.held = -1;
+    const auto r = scene.probe(frame.top - share * frame.thickness * frame.normal, state, fresh);
+    return (r.force.total - r.force.tumour).norm();
+  };
+  // The answer is the least over the spots of the share where each reaches `allowed`. The
+  // force grows with the share at every spot, so a spot within `allowed` at the best share
+  // so far cannot lower it: only the others are bisected, the hardest-pressing first.
+  std::vector<std::pair<double, std::array<double, 3>>> spots;
+  for (const auto& spot : exam_spots(scene, thresholds)) spots.emplace_back(plain(spot, PressureDial::kMaxShare), spot);
+  std::sort(spots.begin(), spots.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  double best = PressureDial::kMaxShare;
+  for (const auto& [at_max, spot] : spots) {
+    if (at_max <= allowed) break;  // this and every later spot stays within at the deepest share
+    if (plain(spot, best) <= allowed) continue;
+    if (plain(spot, floor) > allowed) return floor;
+    double lo = floor, hi = best;  // within at lo, above at hi
+    while (hi - lo > 2e-3) {
+      const double mid = 0.5 * (lo + hi);
+      (plain(spot, mid) > allowed ? hi : lo) = mid;
+    }
+    best = lo;
+  }
+  return best;
+}
+
 SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v) {
   std::array<double, mat::kSkeletonChannels> sk{};
   body.skeleton().evaluate(u, v, sk);
@@ -70,16 +135,24 @@ SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v) {
   return f;
 }
 
-double tangent_stiffness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
-                         std::size_t body, double u, double v, double depth, double step) {
-  const auto frame = surface_frame(scene.body(body).body, u, v);
-  const auto force_at = [&](double d) {
-    std::fill(state.warm.begin(), state.warm.end(), 0);
-    state.held = -1;
-    return scene.probe(frame.top - d * frame.normal, state, options).force.total.norm();
-  };
-  const double lo = std::max(0.0, depth - step), hi = depth + step;
-  return (force_at(hi) - force_at(lo)) / (hi - lo);
+double apparent_firmness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
+                         std::size_t body, double u, double v, double depth) {
+  const auto& sb = scene.body(body);
+  if (!sb.layer || !(depth > 0.0)) return 0.0;
+  const auto frame = surface_frame(sb.body, u, v);
+  std::fill(state.warm.begin(), state.warm.end(), 0);
+  state.held = -1;
+  scene::ProbeOptions fresh = options;
+  fresh.remember_side = false;
+  fresh.force.shear = false;  // the tissue's answer to pressing, not to sliding
+  const auto r = scene.probe(frame.top - depth * frame.normal, state, fresh);
+  if (r.body != static_cast<int>(body) || !(r.contact.radius > 0.0)) return 0.0;
+  const double per_pascal = (*sb.layer)(1.0, 2.0 * r.contact.radius);  // N/m per Pa of this layer
+  if (!(per_pascal > 0.0)) return 0.0;
+  const double tissue = r.contact.stiffness / per_pascal;  // Pa: the modulus under the pad
+  const double plain = r.force.normal.norm();
+  const double with_tumours = (r.force.normal + r.force.tumour).norm();
+  return plain > 0.0 ? tissue * with_tumours / plain : tissue;
 }
 
 SurfaceFollower::SurfaceFollower(const scene::Scene& scene, const FollowerOptions& options)
@@ -171,16 +244,24 @@ double SurfaceFollower::bound_press(double want, double felt, double from_u, dou
   return std::min(want, cap);
 }
 
-double SurfaceFollower::desired_press(double dt, double felt, bool hold) {
-  if (!aimed_on_body_ || aim_body_ != body_) return -1.0;
-  if (force_target_ > 0.0 && press_ >= 0.0 && !hold) {
-    // Integral control of the share on the force error, scaled by the local tissue's own
-    // stiffness (a stiffer spot answers the same share with more force: it sinks less).
-    const auto frame = surface_frame(scene_->body(body_).body, u_, v_);
-    const double per_share = std::max(1e-6, frame.stiffness * frame.thickness);  // N per share
-    share_ += options_.force_gain * dt * (force_target_ - felt) / per_share;
-    share_ = std::clamp(share_, 0.0, PressureDial::kMaxShare);
+double SurfaceFollower::share_for_force(double u, double v, double newtons) const {
+  const double top = PressureDial::kMaxShare;
+  if (force_at_share(u, v, top) <= newtons) return top;
+  double lo = 0.0, hi = top;  // f(lo) <= newtons < f(hi)
+  while (hi - lo > 1e-4) {
+    const double mid = 0.5 * (lo + hi);
+    (force_at_share(u, v, mid) <= newtons ? lo : hi) = mid;
   }
+  return lo;
+}
+
+// Force mode presses to the share where the model's fresh press reaches the target, found
+// anew at every frame at the finger's spot: no loop closes through the engine's force, which
+// the GUI sees late and at a rate that falls under load (an integral controller on it swung
+// 0.65-18 N with two busy cores). The engine's force is that model's at the same point.
+double SurfaceFollower::desired_press(bool hold) {
+  if (!aimed_on_body_ || aim_body_ != body_) return -1.0;
+  if (force_target_ > 0.0 && !hold) share_ = share_for_force(u_, v_, force_target_);
   return share_;
 }
 
@@ -190,7 +271,7 @@ std::optional<Vec3> SurfaceFollower::advance(double dt, double felt, bool hold) 
   const double from_u = u_, from_v = v_;
   const std::size_t from_body = body_;
   walk(dt);
-  double want = desired_press(dt, felt, hold);
+  double want = desired_press(hold);
   if (want >= 0.0) {
     want = bound_press(want, felt, body_ == from_body ? from_u : u_, body_ == from_body ? from_v : v_);
   } else {

@@ -129,6 +129,7 @@ TEST(LiveExerciseBound, DeepestStepOverTheTumourIsHeldUnderTheGate) {
   EXPECT_DOUBLE_EQ(c.safety_limit, live.thresholds().max_force);
   EXPECT_DOUBLE_EQ(c.force_bound, kForceBoundShare * live.thresholds().max_force);
   EXPECT_GT(c.stiffness, 0.0);
+  EXPECT_GT(c.firmness, 0.0);  // the default breast is given in kPa
   live.finish();
   double peak = 0.0;
   for (const auto& s : session::read_session(live.session_path()).samples) peak = std::max(peak, norm(s.force));

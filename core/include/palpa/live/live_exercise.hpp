@@ -74,8 +74,11 @@ struct ContactInfo {
   double thickness = 0.0;    ///< m, local tissue thickness 2R at the contact
   double fraction = 0.0;     ///< depth / thickness
   PressureLevel level = PressureLevel::None;
-  /// N/m: the model's tangent stiffness dF/dd here at this depth (tangent_stiffness()); 0
-  /// without contact.
+  /// Pa: the apparent firmness here at this depth (apparent_firmness()): the tissue's
+  /// modulus times the tumours' contrast; 0 without contact or for a body given in N/m.
+  double firmness = 0.0;
+  /// N/m: force over depth (the secant stiffness, never negative), what force mode shows
+  /// for a body given in N/m; 0 without contact.
   double stiffness = 0.0;
   bool force_mode = false;   ///< the finger presses to a force (force_target), not a share
   double force_target = 0.0; ///< N, in force mode
@@ -83,7 +86,13 @@ struct ContactInfo {
   double force_bound = 0.0;  ///< N: where presses stop, kForceBoundShare of safety_limit
   double safety_limit = 0.0; ///< N: the case's safety gate (Thresholds::max_force)
   LoopState loop = LoopState::Ok;
+  /// s between the window's last two frames that moved the finger (0 before the first): the
+  /// finger follows the pointer only at these frames, so a busy computer makes it lag.
+  double frame_gap = 0.0;
 };
+/// s: frames further apart than this make the gauge say the window is late (a tenth of a
+/// second is where a pointer's lag is seen; the window aims at 60 frames a second).
+inline constexpr double kLateFrame = 0.1;
 
 struct LiveMark {
   std::int64_t id = -1;  ///< from 1, as in the session's Mark events
@@ -175,6 +184,8 @@ class LiveExercise {
   const scene::Scene& scene() const { return *scene_; }
   const io::CaseFile& placed_case() const { return placed_; }
   const score::Thresholds& thresholds() const { return thresholds_; }
+  /// The deepest share the pressure dial offers on this case (deepest_plain_share).
+  double deepest_share() const { return deepest_share_; }
   const std::filesystem::path& session_path() const { return options_.session_path; }
   std::uint64_t seed() const { return options_.seed; }
 
@@ -205,8 +216,10 @@ class LiveExercise {
   SurfaceFollower follower_;
   bool following_ = false;                        // aim() drives the probe target
   std::chrono::steady_clock::time_point last_follow_{};
+  double frame_gap_ = 0.0;  // s between the last two follow() calls
   std::chrono::steady_clock::time_point last_fresh_{};  // when update() last got a snapshot
   mutable scene::ProbeState stiffness_state_;           // contact()'s fresh probes
+  double deepest_share_ = PressureDial::kMaxShare;
   std::vector<LiveMark> marks_;
   std::int64_t next_mark_ = 1;
   mutable double last_event_t_ = 0.0;

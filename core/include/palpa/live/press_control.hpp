@@ -38,7 +38,8 @@ class PressureDial {
   /// The deepest share it offers: the last quarter of the tissue is left to the support.
   static constexpr double kMaxShare = 0.85;
 
-  explicit PressureDial(const io::Thresholds& thresholds, int index = 4);
+  /// `top`: the deepest share the case allows (deepest_plain_share; kMaxShare at most).
+  explicit PressureDial(const io::Thresholds& thresholds, int index = 4, double top = kMaxShare);
   int index() const { return index_; }
   void set_index(int index);
   void step(int delta) { set_index(index_ + delta); }
@@ -47,7 +48,7 @@ class PressureDial {
   int step_in_level() const { return index_ % kStepsPerLevel + 1; }
   /// The share of the local thickness this setting presses to: an eighth into the band,
   /// its middle and an eighth before its end (light [0, light_max), medium [light_max,
-  /// deep_min), deep [deep_min, kMaxShare]).
+  /// deep_min), deep [deep_min, top]).
   double share() const;
   /// The first setting of a level (Light, Medium or Deep), its middle step.
   static int middle_of(PressureLevel level);
@@ -55,7 +56,22 @@ class PressureDial {
  private:
   io::Thresholds thresholds_;
   int index_ = 4;
+  double top_ = kMaxShare;
 };
+
+/// How much firmer than plain tissue a spot may be and still read under the force bound at
+/// the deepest step: a tumour of the bundled ladder adds 5-60 % at a deep press.
+inline constexpr double kLumpRoom = 0.6;
+
+/// The deepest share the pressure dial offers on a case: where the case's plain tissue
+/// (its tumours left out) pushes back with at most bound / (1 + room) over its whole exam
+/// region, so no step is held at the bound over plain tissue and a lump up to `room`
+/// firmer still reads above its surroundings (docs/user-guide.md, "How pressure works").
+/// At most PressureDial::kMaxShare; never below the case's deep_min plus a sixth of the
+/// deep band, so deep stays deep where the tissue is too stiff for that (the bound then
+/// holds the press). Fresh probes on a 13 x 13 grid of each exam-region part.
+double deepest_plain_share(const scene::Scene& scene, const io::Thresholds& thresholds,
+                           const scene::ProbeOptions& options, double bound, double room = kLumpRoom);
 
 /// Where the top contour is over a skeleton point, as the contact measures it.
 struct SurfaceFrame {
@@ -66,12 +82,17 @@ struct SurfaceFrame {
 };
 SurfaceFrame surface_frame(const mat::MatBody& body, double u, double v);
 
-/// N/m: the model's tangent stiffness dF/dd at skeleton point (u, v) of `body` and depth
-/// `depth` (m), what a finger feels pressing a little further: central difference of fresh
-/// probes at depth +- `step` along the skeleton normal (one-sided near the skin). For the
-/// GUI thread (it probes the rest scene with its own state).
-double tangent_stiffness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
-                         std::size_t body, double u, double v, double depth, double step = 5e-4);
+/// m: tissue thinner than a fingertip pad is wide (2 x 7.5 mm). There a press reads the
+/// skin over the support more than the tissue, and a firmness is said to be of thin tissue.
+inline constexpr double kThinTissue = 0.015;  // twice mat::kFingertipPadRadius
+
+/// Pa: the firmness force mode shows (docs/user-guide.md, "Force mode"): the modulus of a
+/// uniform layer of the local thickness that would push back as this spot does at this
+/// depth. The tissue's modulus under the pad times the contrast the tumours add there; so
+/// thickness, strain stiffening and the support (which a trainee cannot see) do not enter,
+/// and it is never negative. 0 for a body given in N/m (no modulus) or without contact.
+double apparent_firmness(const scene::Scene& scene, scene::ProbeState& state, const scene::ProbeOptions& options,
+                         std::size_t body, double u, double v, double depth);
 
 struct FollowerOptions {
   double lift = 0.015;       ///< m above the surface when the pointer is off the bodies
@@ -80,7 +101,6 @@ struct FollowerOptions {
   double press_rate = 3.0;   ///< shares of the thickness per second, pressing in
   double release_rate = 6.0; ///< shares of the thickness per second, easing off (a finger lets go faster)
   double lift_rate = 8.0;    ///< lifts per second, rising off or coming down to the skin
-  double force_gain = 6.0;   ///< 1/s, force mode: share change per second per share of error
   /// N: no press goes past the share where the model's force reaches this (force_bound());
   /// 0: no bound.
   double force_bound = 0.0;
@@ -97,14 +117,14 @@ class SurfaceFollower {
   void aim(const std::optional<render::SurfacePick>& pick);
   /// Level mode: press to this share of the local thickness (clamped to [0, kMaxShare]).
   void set_share(double share);
-  /// Force mode: sink until |F| reaches `newtons` (over a stiff lump the finger sinks less);
+  /// Force mode: sink to where the model's |F| is `newtons` (over a stiff lump the finger sinks less);
   /// 0 returns to level mode at the current share.
   void set_force_target(double newtons);
   double force_target() const { return force_target_; }
 
-  /// Advances dt seconds; `felt` is |F| now (force mode reads it). `hold`: the haptic loop
-  /// is stalled or faulted, so `felt` is stale or zero: the finger does not press deeper and
-  /// force mode's controller waits. Returns the probe target, or nothing before the first pick.
+  /// Advances dt seconds; `felt` is |F| now (a force felt past the bound backs the finger
+  /// off). `hold`: the haptic loop is stalled or faulted, so `felt` is stale or zero: the
+  /// finger does not press deeper and force mode keeps its share. Returns the probe target, or nothing before the first pick.
   std::optional<Vec3> advance(double dt, double felt, bool hold = false);
 
   /// The press is held at the force bound (the chosen share or force would go further).
@@ -125,8 +145,11 @@ class SurfaceFollower {
 
  private:
   void walk(double dt);
-  double desired_press(double dt, double felt, bool hold);
+  double desired_press(bool hold);
   double force_at_share(double u, double v, double share) const;
+  /// Force mode: the shallowest share at (u, v) whose fresh press reaches `newtons`
+  /// (kMaxShare if none does). Bisection to a 1e-4 share.
+  double share_for_force(double u, double v, double newtons) const;
   double bound_press(double want, double felt, double from_u, double from_v);
 
   const scene::Scene* scene_;

@@ -1,7 +1,7 @@
 #pragma once
 // The force gauge: how deep the trainee presses as a share of the local tissue thickness,
 // over the light / medium / deep bands the score uses, with the force in newtons; in force
-// mode the local stiffness (N/mm) too. It says in colour and words when the press is held
+// mode the tissue's firmness (kPa; N/mm for a body given in N/m) too. It says in colour and words when the press is held
 // at the safety bound, when the haptic loop stalled and when the device faulted.
 #include <QColor>
 #include <QRectF>
@@ -22,12 +22,12 @@ class ForceGauge : public QWidget {
   void set_contact(const live::ContactInfo& contact);
   const live::ContactInfo& contact() const { return contact_; }
   /// The two lines under the bar, e.g. "7.4 N  medium" and "depth 13.1 mm (32 % of 41 mm)";
-  /// in force mode "6.0 N  stiffness 0.42 N/mm" and "deep: depth 25.1 mm (50 % of 50 mm)".
+  /// in force mode "6.0 N  firmness 28.5 kPa" and "deep: depth 25.1 mm (50 % of 50 mm)".
   /// The share is rounded down, so that it always agrees with the band named.
   QStringList lines() const;
   /// What the gauge warns of, worst first: a device fault, a stalled loop, the press held at
   /// the safety bound; None otherwise.
-  enum class Alert { None, Bound, Stalled, Fault };
+  enum class Alert { None, Late, Bound, Stalled, Fault };
   Alert alert() const;
   /// The colour of the first line (and the bar's frame) for an alert.
   static QColor alert_colour(Alert alert);
