@@ -1,4 +1,4 @@
-// Top-down coverage and pressure maps (see images.hpp).
+// Coverage and pressure maps seen from the bodies' free side (see images.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -35,24 +35,25 @@ struct P2 {
   double x, y;
 };
 
-P2 cell_centre(const score::BodyMap& map, int i, int j) {
+/// A cell centre in the view's plane (m along its right and up).
+P2 cell_centre(const TopView& view, const score::BodyMap& map, int i, int j) {
   const auto& c = map.center[static_cast<std::size_t>(i * map.cols + j)];
-  return {static_cast<double>(c[0]), static_cast<double>(c[1])};
+  return {TopView::along(c, view.right), TopView::along(c, view.up)};
 }
 
 /// A cell centre on the grid extended by one cell on each side (linear extrapolation), so
 /// border cells get corners too. Needs at least 2 x 2 cells.
-P2 extended_centre(const score::BodyMap& map, int i, int j) {
+P2 extended_centre(const TopView& view, const score::BodyMap& map, int i, int j) {
   const int ci = std::clamp(i, 0, map.rows - 1), cj = std::clamp(j, 0, map.cols - 1);
-  const P2 c = cell_centre(map, ci, cj);
+  const P2 c = cell_centre(view, map, ci, cj);
   P2 p = c;
   if (i != ci) {
-    const P2 n = cell_centre(map, ci == 0 ? 1 : map.rows - 2, cj);
+    const P2 n = cell_centre(view, map, ci == 0 ? 1 : map.rows - 2, cj);
     p.x += c.x - n.x;
     p.y += c.y - n.y;
   }
   if (j != cj) {
-    const P2 n = cell_centre(map, ci, cj == 0 ? 1 : map.cols - 2);
+    const P2 n = cell_centre(view, map, ci, cj == 0 ? 1 : map.cols - 2);
     p.x += c.x - n.x;
     p.y += c.y - n.y;
   }
@@ -61,9 +62,9 @@ P2 extended_centre(const score::BodyMap& map, int i, int j) {
 
 /// Corner between cells (i, j) and (i + di, j + dj), di, dj in {-1, +1}: the mean of the
 /// four cell centres around it.
-P2 corner(const score::BodyMap& map, int i, int j, int di, int dj) {
-  const P2 a = extended_centre(map, i, j), b = extended_centre(map, i + di, j);
-  const P2 c = extended_centre(map, i, j + dj), d = extended_centre(map, i + di, j + dj);
+P2 corner(const TopView& view, const score::BodyMap& map, int i, int j, int di, int dj) {
+  const P2 a = extended_centre(view, map, i, j), b = extended_centre(view, map, i + di, j);
+  const P2 c = extended_centre(view, map, i, j + dj), d = extended_centre(view, map, i + di, j + dj);
   return {(a.x + b.x + c.x + d.x) / 4.0, (a.y + b.y + c.y + d.y) / 4.0};
 }
 
@@ -73,13 +74,13 @@ bool map_is_valid(const score::BodyMap& m) {
 }
 
 /// Fills every exam-region cell of every map with colour_of(map, index), lowest cells first
-/// so that the top of a folded contour stays visible.
+/// (along the view's normal) so that the top of a folded contour stays visible.
 template <class ColourOf>
 void draw_cells(cv::Mat& image, const TopView& view, const score::Score& score, ColourOf colour_of) {
   struct Cell {
     const score::BodyMap* map;
     int i, j;
-    float z;
+    double height;
   };
   std::vector<Cell> cells;
   for (const auto& map : score.maps) {
@@ -87,10 +88,10 @@ void draw_cells(cv::Mat& image, const TopView& view, const score::Score& score, 
     for (int i = 0; i < map.rows; ++i)
       for (int j = 0; j < map.cols; ++j) {
         const auto k = static_cast<std::size_t>(i * map.cols + j);
-        if (map.area[k] > 0.0) cells.push_back({&map, i, j, map.center[k][2]});
+        if (map.area[k] > 0.0) cells.push_back({&map, i, j, TopView::along(map.center[k], view.normal)});
       }
   }
-  std::stable_sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.z < b.z; });
+  std::stable_sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.height < b.height; });
   for (const auto& cell : cells) {
     const auto& map = *cell.map;
     const auto k = static_cast<std::size_t>(cell.i * map.cols + cell.j);
@@ -99,12 +100,12 @@ void draw_cells(cv::Mat& image, const TopView& view, const score::Score& score, 
       std::array<cv::Point, 4> quad;
       const int d[4][2] = {{-1, -1}, {-1, 1}, {1, 1}, {1, -1}};
       for (std::size_t q = 0; q < 4; ++q) {
-        const P2 c = corner(map, cell.i, cell.j, d[q][0], d[q][1]);
+        const P2 c = corner(view, map, cell.i, cell.j, d[q][0], d[q][1]);
         quad[q] = fixed(view.to_pixel(c.x, c.y));
       }
       cv::fillConvexPoly(image, quad.data(), 4, colour, cv::LINE_8, kShift);
     } else {  // a single row or column: a disc of the cell's area
-      const P2 c = cell_centre(map, cell.i, cell.j);
+      const P2 c = cell_centre(view, map, cell.i, cell.j);
       const double r = std::sqrt(map.area[k] / std::numbers::pi) * view.scale;
       cv::circle(image, fixed(view.to_pixel(c.x, c.y)), static_cast<int>(std::lround(std::max(1.0, r) * kOne)),
                  colour, cv::FILLED, cv::LINE_AA, kShift);
@@ -128,20 +129,20 @@ void draw_truth(cv::Mat& image, const TopView& view, const score::Score& score) 
   for (const auto& mark : score.marks) {  // lines under everything else
     if (mark.tumour < 0 || mark.tumour >= n) continue;
     const auto& t = score.tumours[static_cast<std::size_t>(mark.tumour)];
-    const auto a = fixed(view.to_pixel(mark.position[0], mark.position[1]));
-    const auto b = fixed(view.to_pixel(t.center[0], t.center[1]));
+    const auto a = fixed(view.to_pixel(mark.position));
+    const auto b = fixed(view.to_pixel(t.center));
     cv::line(image, a, b, kWhite, 4, cv::LINE_AA, kShift);
     cv::line(image, a, b, kInk, 2, cv::LINE_AA, kShift);
   }
   for (const auto& t : score.tumours) {
-    const auto c = fixed(view.to_pixel(t.center[0], t.center[1]));
+    const auto c = fixed(view.to_pixel(t.center));
     const int r = static_cast<int>(std::lround(std::max(4.0, t.radius * view.scale) * kOne));
     const cv::Scalar colour = t.found ? found_colour() : missed_colour();
     cv::circle(image, c, r, kWhite, 5, cv::LINE_AA, kShift);
     cv::circle(image, c, r, colour, 3, cv::LINE_AA, kShift);
   }
   for (const auto& mark : score.marks) {
-    const auto p = view.to_pixel(mark.position[0], mark.position[1]);
+    const auto p = view.to_pixel(mark.position);
     for (const auto& [colour, width] : {std::pair{kWhite, 5}, std::pair{kInk, 2}}) {
       cv::line(image, fixed(p + cv::Point2d(-7, -7)), fixed(p + cv::Point2d(7, 7)), colour, width, cv::LINE_AA, kShift);
       cv::line(image, fixed(p + cv::Point2d(-7, 7)), fixed(p + cv::Point2d(7, -7)), colour, width, cv::LINE_AA, kShift);
@@ -149,7 +150,7 @@ void draw_truth(cv::Mat& image, const TopView& view, const score::Score& score) 
   }
   // Tumour centres last: a mark placed close to one must not hide where it really is.
   for (const auto& t : score.tumours) {
-    const auto c = fixed(view.to_pixel(t.center[0], t.center[1]));
+    const auto c = fixed(view.to_pixel(t.center));
     const cv::Scalar colour = t.found ? found_colour() : missed_colour();
     cv::circle(image, c, static_cast<int>(5 * kOne), kWhite, cv::FILLED, cv::LINE_AA, kShift);
     cv::circle(image, c, static_cast<int>(4 * kOne), colour, cv::FILLED, cv::LINE_8, kShift);
@@ -183,8 +184,8 @@ void draw_truth_legend(cv::Mat& image, const TopView& view) {
 
 cv::Mat blank(const std::string& title, const score::Score& score) {
   cv::Mat image(kHeight, kWidth, CV_8UC3, kWhite);
-  put_text(image, title, {kMapArea.x, 32}, 0.7, 2);
-  put_text(image, "top-down view (x right, y up)", {kMapArea.x + 470, 32}, 0.45);
+  put_text(image, title, {kMapArea.x, 28}, 0.7, 2);
+  put_text(image, kMapViewNote, {kMapArea.x, kMapArea.y - 6}, 0.45);
   if (std::none_of(score.maps.begin(), score.maps.end(), map_is_valid))
     put_text(image, "(no exam map in this score)", {kMapArea.x + 180, kMapArea.y + kMapArea.height / 2});
   return image;
@@ -203,6 +204,54 @@ cv::Scalar viridis(double fraction) {
   return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
 }
 
+using Axis = TopView::Axis;
+
+Axis cross(const Axis& a, const Axis& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double length(const Axis& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+/// The way out of the bodies' free side: the area-weighted mean normal of every map's top
+/// contour, summed over the quads between its cell centres (the grid runs along the
+/// skeleton's u and v, so u x v points out of the free side as the skeleton's normal does);
+/// +z when no map has two rows and two columns of finite centres.
+Axis free_side_normal(const score::Score& score) {
+  Axis sum{0.0, 0.0, 0.0};
+  for (const auto& map : score.maps) {
+    if (!map_is_valid(map)) continue;
+    const auto at = [&](int i, int j) {
+      const auto& c = map.center[static_cast<std::size_t>(i * map.cols + j)];
+      return Axis{c[0], c[1], c[2]};
+    };
+    for (int i = 0; i + 1 < map.rows; ++i)
+      for (int j = 0; j + 1 < map.cols; ++j) {
+        const Axis a = at(i, j), b = at(i + 1, j + 1), c = at(i, j + 1), d = at(i + 1, j);
+        const Axis n = cross({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - d[0], c[1] - d[1], c[2] - d[2]});
+        if (std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]))
+          for (std::size_t k = 0; k < 3; ++k) sum[k] += n[k];
+      }
+  }
+  const double n = length(sum);
+  if (!(n > 0.0)) return {0.0, 0.0, 1.0};
+  return {sum[0] / n, sum[1] / n, sum[2] / n};
+}
+
+/// The picture's axes looking down `normal`: up is +y across it (+z when the normal is
+/// along y), right = up x normal; the trainee window's default view frames the same way.
+void set_axes(TopView& view, const Axis& normal) {
+  const auto across = [&](const Axis& a) {
+    const double d = a[0] * normal[0] + a[1] * normal[1] + a[2] * normal[2];
+    return Axis{a[0] - d * normal[0], a[1] - d * normal[1], a[2] - d * normal[2]};
+  };
+  Axis up = across({0.0, 1.0, 0.0});
+  if (length(up) < 0.2) up = across({0.0, 0.0, 1.0});
+  const double n = length(up);
+  view.normal = normal;
+  view.up = {up[0] / n, up[1] / n, up[2] / n};
+  view.right = cross(view.up, normal);
+}
+
 }  // namespace
 
 cv::Scalar found_colour() { return {40, 170, 40}; }
@@ -218,9 +267,12 @@ cv::Scalar level_colour(int level) {
 }
 
 TopView map_view(const score::Score& score) {
+  TopView view;
+  set_axes(view, free_side_normal(score));
   constexpr double kInf = std::numeric_limits<double>::infinity();
   double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
-  auto add = [&](double x, double y, double r) {
+  auto add = [&](const auto& point, double r) {
+    const double x = TopView::along(point, view.right), y = TopView::along(point, view.up);
     if (!std::isfinite(x) || !std::isfinite(y)) return;
     x0 = std::min(x0, x - r);
     x1 = std::max(x1, x + r);
@@ -230,16 +282,15 @@ TopView map_view(const score::Score& score) {
   for (const auto& map : score.maps) {
     if (!map_is_valid(map)) continue;
     for (std::size_t k = 0; k < map.area.size(); ++k)
-      if (map.area[k] > 0.0) add(map.center[k][0], map.center[k][1], std::sqrt(map.area[k]) / 2);
+      if (map.area[k] > 0.0) add(map.center[k], std::sqrt(map.area[k]) / 2);
   }
-  for (const auto& t : score.tumours) add(t.center[0], t.center[1], std::isfinite(t.radius) ? t.radius : 0.0);
-  for (const auto& m : score.marks) add(m.position[0], m.position[1], 0.0);
+  for (const auto& t : score.tumours) add(t.center, std::isfinite(t.radius) ? t.radius : 0.0);
+  for (const auto& m : score.marks) add(m.position, 0.0);
   if (!(x0 <= x1)) x0 = y0 = -0.05, x1 = y1 = 0.05;
   // At least 1 cm across, and a 5 % margin.
   const double span = std::max({x1 - x0, y1 - y0, 0.01});
   const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
   const double wx = std::max(x1 - x0, span * 0.2) * 1.1, wy = std::max(y1 - y0, span * 0.2) * 1.1;
-  TopView view;
   view.scale = std::min(kMapArea.width / wx, kMapArea.height / wy);
   // Centre the drawing in the area.
   view.area = kMapArea;

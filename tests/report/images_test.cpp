@@ -7,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "palpa/report/images.hpp"
+#include "palpa/scene/scene.hpp"
+#include "palpa/io/case_file.hpp"
 #include "report_fixture.hpp"
 
 namespace palpa::report {
@@ -89,6 +91,57 @@ TEST(MapImages, PressureMapColoursTheDeepestLevel) {
   EXPECT_EQ(pixel(image, view, cell_x(0), cell_y(0)), bgr(level_colour(1)));
   EXPECT_EQ(pixel(image, view, cell_x(2), cell_y(1)), bgr(level_colour(0)));
   EXPECT_EQ(pixel(image, view, cell_x(3), cell_y(3)), cv::Vec3b(255, 255, 255));
+}
+
+/// A session of `case_file` with one sample resting on the body, scored: its maps cover
+/// the case's exam region.
+score::Score scored_case(const std::string& case_file) {
+  session::Session s;
+  std::ifstream in(std::string(PALPA_SOURCE_DIR) + "/data/cases/" + case_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  s.info.case_document = nlohmann::json::parse(text.str());
+  s.info.case_source = case_file;
+  engine::Sample x;
+  x.body = 0;
+  x.u = x.v = 0.5;
+  s.samples.push_back(x);
+  return score::score_session(s, case_file);
+}
+
+// The imported breast rests on its chest wall with its free side towards +y: its maps look
+// down the support's normal (the body's press axis) and show its footprint, the exam
+// region's extent across that normal, not its side profile (x against y, the thickness).
+TEST(MapImages, ABodyOnASupportIsSeenFromItsFreeSide) {
+  const auto score = scored_case("victre-breast.json");
+  const auto view = map_view(score);
+  const auto file = io::load_case(std::string(PALPA_SOURCE_DIR) + "/data/cases/victre-breast.json");
+  const auto scene = scene::Scene::build(file, "victre-breast.json");
+  const Vec3 up = scene.body(0).press_axis.up;
+  EXPECT_GT(up.y(), 0.95);
+  EXPECT_GT(view.normal[0] * up.x() + view.normal[1] * up.y() + view.normal[2] * up.z(), 0.99);
+  // The region's extent along the picture's axes, against its extent across and along the normal.
+  double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+  for (std::size_t k = 0; k < score.maps[0].area.size(); ++k) {
+    if (!(score.maps[0].area[k] > 0.0)) continue;
+    const auto& c = score.maps[0].center[k];
+    const double p[3] = {TopView::along(c, view.right), TopView::along(c, view.up), TopView::along(c, view.normal)};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  }
+  const double wide = hi[0] - lo[0], tall = hi[1] - lo[1], deep = hi[2] - lo[2];
+  EXPECT_GT(tall, 2.0 * deep) << "the picture's height is the footprint's, not the thickness";
+  EXPECT_GT(wide, 2.0 * deep);
+  // Drawn: most of the map area is coloured (a side profile is a thin band).
+  const auto image = coverage_heatmap(score);
+  const cv::Mat area = image(view.area);
+  int coloured = 0;
+  for (int r = 0; r < area.rows; ++r)
+    for (int c = 0; c < area.cols; ++c) coloured += area.at<cv::Vec3b>(r, c) != cv::Vec3b(255, 255, 255) ? 1 : 0;
+  EXPECT_GT(coloured, area.rows * area.cols / 3);
+  // The flat bundled cases (normal +z) keep x to the right and y up.
+  const auto flat = map_view(scored_case("default.json"));
+  EXPECT_NEAR(flat.right[0], 1.0, 1e-6);
+  EXPECT_NEAR(flat.up[1], 1.0, 1e-3);
 }
 
 TEST(MapImages, EmptyScoreStillDraws) {

@@ -1,12 +1,15 @@
 #pragma once
 // The figures of a session report, drawn with OpenCV (8-bit BGR images):
-//  - coverage heatmap: a top-down (x, y) view of every body's exam map, each cell filled
-//    between its neighbours' centres and coloured by dwell time (viridis, with a colour
-//    bar); untouched cells of the exam region grey, cells outside it (area 0) not drawn;
+//  - coverage heatmap: every body's exam map seen from its free side, looking down the
+//    support's normal (the area-weighted mean normal of the top contours, as the score's
+//    top-down view: docs/scoring.md), each cell filled between its neighbours' centres and
+//    coloured by dwell time (viridis, with a colour bar); untouched cells of the exam region
+//    grey, cells outside it (area 0) not drawn;
 //  - pressure map: the same view coloured by the deepest pressure level reached;
 //  - force over time: |F| and the indentation level (depth over local tissue thickness).
 // Both maps reveal the tumours (circle of the tumour's radius, a dot at its centre: green
 // found, red missed) and the marks (crosses), with a line from each mark to the tumour it hit.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,20 +22,41 @@ namespace palpa::report {
 
 class ForceTrace;
 
-/// Where scene (x, y) lands in a map image: x to the right, y up, one scale for both.
+/// Where a scene point lands in a map image. The view looks down `normal` (out of the
+/// bodies' free side) onto the plane across it: `right` to the right, `up` up (+y across the
+/// normal, +z when the normal is along y: the trainee window's picture), one scale for both.
+/// A body on a support whose normal is +z is seen as before: x to the right, y up.
 struct TopView {
+  using Axis = std::array<double, 3>;
   cv::Rect area;       ///< the drawing area in the image
-  double x_min = 0.0;  ///< m at the area's left edge
-  double y_max = 0.0;  ///< m at the area's top edge
+  double x_min = 0.0;  ///< m along `right` at the area's left edge
+  double y_max = 0.0;  ///< m along `up` at the area's top edge
   double scale = 1.0;  ///< pixels per m
+  Axis right{1.0, 0.0, 0.0}, up{0.0, 1.0, 0.0}, normal{0.0, 0.0, 1.0};  ///< unit, right = up x normal
+  /// A point of the view's plane: x m along `right`, y m along `up`.
   cv::Point2d to_pixel(double x, double y) const {
     return {area.x + (x - x_min) * scale, area.y + (y_max - y) * scale};
   }
+  /// A scene point (m).
+  template <class T>
+  cv::Point2d to_pixel(const std::array<T, 3>& p) const {
+    return to_pixel(along(p, right), along(p, up));
+  }
+  /// How far a scene point lies along an axis (m).
+  template <class T>
+  static double along(const std::array<T, 3>& p, const Axis& axis) {
+    return static_cast<double>(p[0]) * axis[0] + static_cast<double>(p[1]) * axis[1] +
+           static_cast<double>(p[2]) * axis[2];
+  }
 };
 
-/// The view both maps use: the exam region's cells, the tumours and the marks, fitted with
-/// a margin into the map area of the image.
+/// The view both maps use: down the area-weighted mean normal of every map's top contour
+/// (+z without one), the exam region's cells, the tumours and the marks fitted with a
+/// margin into the map area of the image.
 TopView map_view(const score::Score& score);
+
+/// What the maps say of their view.
+inline constexpr const char* kMapViewNote = "seen from the free side, along the support's normal";
 
 /// Colours (BGR) the maps use, so tests and legends agree.
 cv::Scalar found_colour();
