@@ -287,6 +287,48 @@ class TraineeWindowTest : public QObject {
     QVERIFY(!finish->isEnabled());
   }
 
+  // Pressing deep on a case whose safety limit is low holds the press at the bound: the
+  // gauge's words for it ("held at 3 N: the safety limit is 3 N", cut off after "the safety
+  // lim" before) wrap onto a second row; no text of the side panel or the status bar is cut.
+  void noMessageIsCutOffAtTheDefaultSize() {
+    QTemporaryDir dir;
+    const auto path = changed_default_case(dir, [](nlohmann::json& d) { d["scoring"]["max_force"] = 3.0; });
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("bound.palpa"), path), "bound.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* view = window.view();
+    const QPoint at = window.to_view(top_over_tumour(window.exercise()));
+    move_pointer(view->input(), at);
+    wheel(view->input(), at, 3);  // deep
+    auto* g = window.gauge();
+    QVERIFY2(wait_for([&] { return g->alert() == palpa::ui::ForceGauge::Alert::Bound; }), qPrintable(g->text()));
+    QTest::qWait(50);
+    const QString words = g->lines()[0];
+    QVERIFY2(words.contains("the safety limit is 3 N"), qPrintable(words));
+    const auto box = g->layout();
+    QFont bold = g->font();
+    bold.setBold(true);
+    const QFontMetrics fm(bold);
+    qInfo("gauge %d px wide; \"%s\" is %d px", g->width(), qPrintable(words), fm.horizontalAdvance(words));
+    const QRect wrapped = fm.boundingRect(box.force_line.toRect(), Qt::TextWordWrap, words);
+    QVERIFY2(wrapped.height() <= box.force_line.height() + 0.5 && wrapped.width() <= box.force_line.width() + 0.5,
+             qPrintable(QString("%1 x %2 in %3 x %4").arg(wrapped.width()).arg(wrapped.height())
+                            .arg(box.force_line.width()).arg(box.force_line.height())));
+    QVERIFY(!box.force_line.intersects(box.depth_line));
+    QVERIFY(box.depth_line.bottom() <= g->height());
+    for (auto* w : window.findChildren<QWidget*>()) {
+      if (!w->isVisible() || w == g || w->window() != &window) continue;
+      auto* label = qobject_cast<QLabel*>(w);
+      const bool text = label || qobject_cast<QAbstractButton*>(w);
+      if (!text || (label && label->text().isEmpty())) continue;
+      const bool fits = label && label->wordWrap() ? label->heightForWidth(label->width()) <= label->height()
+                                                   : w->sizeHint().width() <= w->width();
+      QVERIFY2(fits, qPrintable(QString("%1 \"%2\": %3 x %4 for a hint of %5 x %6")
+                                    .arg(w->metaObject()->className(), label ? label->text() : qobject_cast<QAbstractButton*>(w)->text())
+                                    .arg(w->width()).arg(w->height()).arg(w->sizeHint().width()).arg(w->sizeHint().height())));
+    }
+  }
+
   // From the default view the pointer reaches the whole exam region of every bundled case
   // (from the front, the crest of the default breast hid its far slope).
   void defaultViewShowsTheWholeExamRegionOfEveryCase() {

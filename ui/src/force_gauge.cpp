@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include <QFontMetrics>
 #include <QPainter>
+#include <QResizeEvent>
 
 #include "palpa/live/press_control.hpp"
 
@@ -14,6 +16,21 @@ namespace {
 
 constexpr double kMarkerHeight = 7.0;  // px: the needle's strip under the bar
 constexpr double kRimThickness = 1e-3; // m: thinner than this, a share of it means nothing
+constexpr int kReservedRows = 3;        // the two lines' rows the gauge always has room for:
+                                        // an alert's words take two at the trainee's panel width
+
+QFont bold_of(QFont font) {
+  font.setBold(true);
+  return font;
+}
+
+/// Rows `text` takes wrapped at word boundaries into `width` px.
+int rows_of(const QString& text, const QFont& font, double width) {
+  if (text.isEmpty()) return 1;
+  const QFontMetrics fm(font);
+  const QRect r = fm.boundingRect(QRect(0, 0, std::max(1, static_cast<int>(width)), 1 << 20), Qt::TextWordWrap, text);
+  return std::max(1, (r.height() + fm.lineSpacing() - 1) / fm.lineSpacing());
+}
 
 }  // namespace
 
@@ -26,7 +43,26 @@ ForceGauge::ForceGauge(double light_max, double deep_min, QWidget* parent)
 
 void ForceGauge::set_contact(const live::ContactInfo& contact) {
   contact_ = contact;
+  fit_rows();
   update();
+}
+
+void ForceGauge::fit_rows() {
+  const Layout g = layout();
+  const int rows = static_cast<int>(std::lround((g.depth_line.bottom() - g.force_line.top()) / row_height()));
+  if (rows == rows_) return;
+  rows_ = rows;
+  // A wrapped line needs more rows than the gauge had (or fewer): the panel makes room.
+  setMinimumHeight(minimumSizeHint().height());
+}
+
+double ForceGauge::row_height() const {
+  return std::max(fontMetrics().lineSpacing(), QFontMetrics(bold_of(font())).lineSpacing()) + 2.0;
+}
+
+void ForceGauge::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  fit_rows();
 }
 
 ForceGauge::Alert ForceGauge::alert() const {
@@ -98,19 +134,22 @@ QString ForceGauge::text() const {
 }
 
 QSize ForceGauge::minimumSizeHint() const {
-  const int line = fontMetrics().height() + 2;
-  return {160, 4 + std::max(18, line + 2) + static_cast<int>(kMarkerHeight) + 2 + 2 * line + 4};
+  const double line = row_height();
+  const int rows = std::max(kReservedRows, rows_);
+  return {160, static_cast<int>(std::ceil(4 + std::max(18.0, line) + kMarkerHeight + 2 + rows * line + 4))};
 }
 
 QSize ForceGauge::sizeHint() const { return {260, minimumSizeHint().height()}; }
 
 ForceGauge::Layout ForceGauge::layout() const {
-  const double line = fontMetrics().height() + 2.0;
+  const double line = row_height();
   Layout g;
-  g.bar = QRectF(4.0, 4.0, width() - 8.0, std::max(18.0, line + 2.0));
+  g.bar = QRectF(4.0, 4.0, width() - 8.0, std::max(18.0, line));
   g.marker = QRectF(g.bar.left(), g.bar.bottom(), g.bar.width(), kMarkerHeight);
-  g.force_line = QRectF(g.bar.left(), g.marker.bottom() + 2.0, g.bar.width(), line);
-  g.depth_line = QRectF(g.bar.left(), g.force_line.bottom(), g.bar.width(), line);
+  const auto l = lines();
+  const double w = g.bar.width();
+  g.force_line = QRectF(g.bar.left(), g.marker.bottom() + 2.0, w, rows_of(l[0], bold_of(font()), w) * line);
+  g.depth_line = QRectF(g.bar.left(), g.force_line.bottom(), w, rows_of(l[1], font(), w) * line);
   return g;
 }
 
@@ -156,16 +195,14 @@ void ForceGauge::paintEvent(QPaintEvent*) {
   const Layout g = layout();
   paint_bands(p, g);
   paint_marker(p, g);
+  // Whole words wrapped over the rows the layout gave each line: nothing is cut off.
   const auto l = lines();
-  const int room = static_cast<int>(g.force_line.width());
-  QFont bold = font();
-  bold.setBold(true);
-  p.setFont(bold);
+  p.setFont(bold_of(font()));
   p.setPen(alert_colour(alert()));
-  p.drawText(g.force_line, Qt::AlignLeft | Qt::AlignVCenter, QFontMetrics(bold).elidedText(l[0], Qt::ElideRight, room));
+  p.drawText(g.force_line, Qt::AlignLeft | Qt::AlignVCenter | Qt::TextWordWrap, l[0]);
   p.setFont(font());
   p.setPen(Qt::black);
-  p.drawText(g.depth_line, Qt::AlignLeft | Qt::AlignVCenter, fontMetrics().elidedText(l[1], Qt::ElideRight, room));
+  p.drawText(g.depth_line, Qt::AlignLeft | Qt::AlignVCenter | Qt::TextWordWrap, l[1]);
 }
 
 }  // namespace palpa::ui

@@ -34,7 +34,8 @@ class ForceGauge : public QWidget {
   /// Both lines in one, for messages and tests.
   QString text() const;
   /// Where paintEvent draws the band names and the two lines (widget pixels): they never
-  /// overlap, and each text is elided to its box at any width.
+  /// overlap, and each line's box has the rows its words take wrapped at the gauge's width
+  /// (the gauge asks its layout for more height when they need more than it has).
   /// `marker` is the strip under the bar where the needle shows the press: the needle never
   /// crosses the band names in the bar.
   struct Layout {
@@ -46,6 +47,7 @@ class ForceGauge : public QWidget {
 
  protected:
   void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
 
  private:
   double light_max_, deep_min_;
@@ -53,7 +55,11 @@ class ForceGauge : public QWidget {
   QString depth_words() const;  // the second line
   void paint_bands(QPainter& p, const Layout& g) const;
   void paint_marker(QPainter& p, const Layout& g) const;
+  /// The rows the two lines take now; asks for a new height when that changed.
+  void fit_rows();
+  double row_height() const;  // px: one row of text and its spacing
   double scale_;  // the bar's full length, as a fraction of the thickness
+  int rows_ = 0;  // the rows the two lines took at the last fit_rows
   live::ContactInfo contact_;
 };
 
