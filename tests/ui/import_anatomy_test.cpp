@@ -37,6 +37,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "fits_screen.hpp"
 
 namespace {
 
@@ -260,6 +261,34 @@ class ImportAnatomyTest : public QObject {
     for (const auto& e : doc["bodies"][0]["modulus"]) QCOMPARE(e.get<double>(), 5000.0);
     QCOMPARE(doc["provenance"]["support_source"].get<std::string>(), std::string("support.stl"));
     QVERIFY(window.draft().validate().empty());
+  }
+
+  // The dialog fits a 1280 x 800 screen under a title bar and a panel (it opened 1100 x 820),
+  // its buttons inside: empty, with the label mapping table (its tallest inputs) and with
+  // an import previewed.
+  void theDialogFitsTheScreen() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft()};
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QDialog* dialog = open_import(window);
+    QVERIFY(dialog);
+    QVERIFY(QTest::qWaitForWindowExposed(dialog));
+    const QList<QWidget*> buttons{button(dialog, "Import"), button(dialog, "Use this case"), button(dialog, "Cancel")};
+    palpa::ui::testing::check_fits_screen(*dialog, buttons);
+    type_line(dialog, "importPath", write_dome(dir));
+    auto* table = dialog->findChild<QComboBox*>("labelTable");
+    arrow_down(table, 3);  // -> Map labels…
+    QTRY_VERIFY(dialog->findChild<QTableWidget*>("labelMap")->isVisible());
+    palpa::ui::testing::check_fits_screen(*dialog, buttons);
+    table->setFocus();
+    QTest::keyClick(table, Qt::Key_Up);
+    QTest::keyClick(table, Qt::Key_Up);  // -> generic
+    click(button(dialog, "Import"));
+    QVERIFY(button(dialog, "Use this case")->isEnabled());
+    palpa::ui::testing::check_fits_screen(*dialog, buttons);
+    click(button(dialog, "Cancel"));
+    QTRY_VERIFY(!dialog->isVisible());
   }
 
   // A mapping of many labels is recorded whole entries at a time, within what a case's

@@ -59,6 +59,7 @@
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "fits_screen.hpp"
 
 namespace {
 
@@ -668,8 +669,7 @@ class InstructorWindowTest : public QObject {
   // own tissue (3.24 kPa, stiffening 3.59), not the preset's; and at 1280 x 800 every
   // control of the side panel lies inside it (none cut off at the right).
   void aCaseNotFromAPresetShowsItsOwnTissueAndThePanelFits() {
-    InstructorWindow window{palpa::author::CaseDraft()};
-    window.resize(1280, 800);
+    InstructorWindow window{palpa::author::CaseDraft()};  // its size on a 1280 x 800 screen
     show(window);
     QVERIFY2(window.open_case(QString::fromStdString(kDefaultCase)), qPrintable(window.message()));
     QTest::qWait(50);
@@ -883,6 +883,22 @@ class InstructorWindowTest : public QObject {
     QTRY_VERIFY(window.try_window() == nullptr);
   }
 
+  // The window fits a 1280 x 800 screen under a title bar and a panel (it was resized to
+  // exactly 1280 x 800, no room for either); the Tumours tab (clicked) shows all its
+  // controls, Remove tumour too, without scrolling the side panel.
+  void fitsTheScreen() {
+    InstructorWindow window{palpa::author::CaseDraft()};
+    show(window);
+    auto* side = window.findChild<QScrollArea*>("sidePanel");
+    palpa::ui::testing::check_fits_screen(window, {side, window.problems()});
+    show_tab_of(window.tumour_panel());
+    QTest::qWait(20);
+    auto* remove = window.tumour_panel()->remove_button();
+    const QRect shown(remove->mapTo(side->viewport(), QPoint(0, 0)), remove->size());
+    QVERIFY2(!side->verticalScrollBar()->isVisible() && side->viewport()->rect().contains(shown),
+             qPrintable(QString("Remove tumour ends at y %1, the panel is %2 high").arg(shown.bottom()).arg(side->viewport()->height())));
+  }
+
   // A title typed without leaving the field is what Ctrl+S saves; typed and then undone,
   // the typed title is the step undone and the field shows the title before it.
   void typedButUncommittedTitleIsSavedAndUndone() {
@@ -1088,7 +1104,7 @@ class InstructorWindowTest : public QObject {
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QImage image(png);
     QVERIFY(!image.isNull());
-    QCOMPARE(image.size(), QSize(1280, 800));
+    QCOMPARE(image.size(), QSize(1272, 696));  // a 1280 x 800 screen less a title bar and a panel
     const int skin = skin_pixels(image);
     QVERIFY2(skin > image.width() * image.height() / 10, qPrintable(QString::number(skin)));
 

@@ -30,6 +30,7 @@
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/session_charts.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "fits_screen.hpp"
 
 #include <vtkAxis.h>
 #include <vtkCallbackCommand.h>
@@ -374,6 +375,17 @@ class ReviewWindowTest : public QObject {
     QVERIFY(pixels_near(coverage, QColor(200, 200, 200), 3) < coverage.width() * coverage.height() / 10);
   }
 
+  // The window fits a 1280 x 800 screen under a title bar and a panel (it was 1200 x 760),
+  // Play and Export inside.
+  void fitsTheScreen() {
+    auto w = open_review(kExpert);
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    QPushButton* export_button = nullptr;
+    for (auto* b : w->findChildren<QPushButton*>()) export_button = b->text().startsWith("Export") ? b : export_button;
+    palpa::ui::testing::check_fits_screen(*w, {export_button, w->play_button()});
+  }
+
   void commandLineRejectsBadSessions() {
     QTemporaryDir dir;
     const QString bad = dir.filePath("bad.palpa");
@@ -399,7 +411,7 @@ class ReviewWindowTest : public QObject {
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QImage image(png);
     QVERIFY(!image.isNull());
-    QCOMPARE(image.size(), QSize(1200, 760));
+    QCOMPARE(image.size(), QSize(1200, 696));  // a 1280 x 800 screen less a title bar and a panel
     const int path = path_pixels(image);
     QVERIFY2(path > 5000, qPrintable(QString::number(path)));
     // The chart under the 3-D view: where this process' window of the same size puts the
@@ -408,7 +420,7 @@ class ReviewWindowTest : public QObject {
     auto w = open_review(kExpert);
     w->show();
     QVERIFY(QTest::qWaitForWindowExposed(w.get()));
-    QCOMPARE(w->size(), QSize(1200, 760));
+    QCOMPARE(w->size(), QSize(1200, 696));
     auto* view = w->charts()->view();
     const QRect chart(view->mapTo(w.get(), QPoint(0, 0)), view->size());
     QVERIFY(chart.height() > 150 && chart.width() > 600);

@@ -24,6 +24,7 @@
 #include <functional>
 #include <QCheckBox>
 #include <QDir>
+#include <QStandardPaths>
 #include <memory>
 #include <vtkCamera.h>
 #include <vtkPoints.h>
@@ -40,6 +41,7 @@
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
 #include "palpa/version.hpp"
+#include "fits_screen.hpp"
 
 namespace {
 
@@ -285,6 +287,25 @@ class TraineeWindowTest : public QObject {
              qPrintable(window.score_card()->headline()));
     QVERIFY(window.score_card()->text().contains("sensitivity"));
     QVERIFY(!finish->isEnabled());
+  }
+
+  // At 1280 x 800 a window's frame has about 1280 x 730 under a title bar and the desktop
+  // panel. The trainee window (1200 x 760 before) and the score card (968 px tall before,
+  // its Close off the screen) fit it; the card's Close is clicked and closes it.
+  void windowAndScoreCardFitA1280x800Screen() {
+    QTemporaryDir dir;
+    palpa::ui::TraineeWindow window(make_exercise(dir.filePath("fit.palpa")), "default.json");
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    palpa::ui::testing::check_fits_screen(window, {button_named(window, "Mark here"), button_named(window, "Finish")});
+    QTest::mouseClick(button_named(window, "Finish"), Qt::LeftButton);
+    auto* card = window.score_card();
+    QVERIFY(card);
+    QVERIFY(QTest::qWaitForWindowExposed(card));
+    palpa::ui::testing::check_fits_screen(*card, {card->close_button()});
+    QVERIFY(card->findChild<QLabel*>("mapView")->text().contains("seen from the free side, along the support's normal"));
+    QTest::mouseClick(card->close_button(), Qt::LeftButton);
+    QTRY_VERIFY(!card->isVisible());
   }
 
   // Pressing deep on a case whose safety limit is low holds the press at the bound: the
@@ -561,12 +582,35 @@ class TraineeWindowTest : public QObject {
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QImage image(png);
     QVERIFY(!image.isNull());
-    QCOMPARE(image.size(), QSize(1200, 760));
+    QCOMPARE(image.size(), QSize(1200, 696));  // fits a 1280 x 800 screen with a title bar and a panel
     // The body covers a good part of the view (about a fifth of the window at the default
     // camera); an empty view has none of its colour.
     const int skin = skin_pixels(image);
     QVERIFY2(skin > image.width() * image.height() / 10, qPrintable(QString::number(skin)));
     QVERIFY(!QFile::exists(dir.filePath("trainee.palpa")));
+  }
+
+  // On a smaller screen (1024 x 600) each window opens within the screen's available
+  // geometry less a title bar: the trainee, instructor and review windows drawn by
+  // palpa --screenshot on such a display.
+  void onASmallScreenEveryWindowFitsIt() {
+    const QString xvfb = QStandardPaths::findExecutable("xvfb-run");
+    if (xvfb.isEmpty()) QSKIP("xvfb-run is not installed");
+    QTemporaryDir dir;
+    const QStringList modes[] = {{"--case", QString::fromStdString(kDefaultCase)},
+                                 {"--mode", "instructor"},
+                                 {"--mode", "review", "--session", PALPA_SOURCE_DIR "/data/sessions/expert.palpa"}};
+    for (const auto& mode : modes) {
+      const QString png = dir.filePath("small.png");
+      QFile::remove(png);
+      QProcess p;
+      p.start(xvfb, QStringList{"-a", "-s", "-screen 0 1024x600x24", PALPA_GUI_EXE} + mode + QStringList{"--screenshot", png});
+      QVERIFY(p.waitForFinished(120000));
+      QVERIFY2(p.exitCode() == 0, qPrintable(QString::fromUtf8(p.readAllStandardError())));
+      const QSize size = QImage(png).size();
+      qInfo("%s on 1024 x 600: %d x %d", qPrintable(mode.join(' ')), size.width(), size.height());
+      QVERIFY2(size.width() <= 1016 && size.height() <= 566 && !size.isEmpty(), qPrintable(mode.join(' ')));
+    }
   }
 
   // The gauge on its own, fed contacts: words and colours for the bound, a stall and a

@@ -10,13 +10,16 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSpinBox>
+#include <QStyle>
 #include <QVBoxLayout>
 
 #include "import_label_map.hpp"
 #include "import_preview.hpp"
 #include "palpa/anatomy/import_error.hpp"
 #include "palpa/anatomy_io/anatomy_io.hpp"
+#include "palpa/ui/window_frame.hpp"
 #include "spin_box.hpp"
 
 namespace palpa::ui {
@@ -26,6 +29,17 @@ const char* const kInputFilter =
     "Label volumes and meshes (*.nii *.nii.gz *.nrrd *.nhdr *.mhd *.mha *.vti *.stl *.obj *.ply);;"
     "Label volumes (*.nii *.nii.gz *.nrrd *.nhdr *.mhd *.mha *.vti);;Meshes (*.stl *.obj *.ply);;All files (*)";
 
+/// A scroll area that asks for its content's height as it is now (a label table shown, a
+/// box hidden): QScrollArea keeps the size hint its content had the first time.
+class InputsArea : public QScrollArea {
+ public:
+  using QScrollArea::QScrollArea;
+  QSize sizeHint() const override {
+    if (!widget()) return QScrollArea::sizeHint();
+    const int bar = style()->pixelMetric(QStyle::PM_ScrollBarExtent);
+    return widget()->sizeHint() + QSize(bar + 2 * frameWidth(), 2 * frameWidth());
+  }
+};
 
 }  // namespace
 
@@ -33,10 +47,22 @@ ImportAnatomyDialog::ImportAnatomyDialog(QWidget* parent) : QDialog(parent) {
   setObjectName("importAnatomyDialog");
   setWindowTitle(tr("Import anatomy"));
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(build_file_row());
-  layout->addWidget(volume_box_ = build_volume_box());
-  layout->addWidget(mesh_box_ = build_mesh_box());
-  layout->addWidget(build_grid_row());
+  // The inputs scroll when the screen is too small for them and the preview; the error
+  // line, the preview and the buttons stay in sight.
+  auto* inputs = inputs_ = new InputsArea(this);
+  inputs->setObjectName("importInputs");
+  inputs->setWidgetResizable(true);
+  inputs->setFrameShape(QFrame::NoFrame);
+  auto* form = new QWidget(inputs);
+  auto* form_layout = new QVBoxLayout(form);
+  form_layout->setContentsMargins(0, 0, 0, 0);
+  form_layout->addWidget(build_file_row());
+  form_layout->addWidget(volume_box_ = build_volume_box());
+  form_layout->addWidget(mesh_box_ = build_mesh_box());
+  form_layout->addWidget(build_grid_row());
+  form_layout->addStretch(1);
+  inputs->setWidget(form);
+  layout->addWidget(inputs);
   error_ = new QLabel(this);
   error_->setObjectName("importError");
   error_->setStyleSheet("color: #c00000;");
@@ -46,7 +72,7 @@ ImportAnatomyDialog::ImportAnatomyDialog(QWidget* parent) : QDialog(parent) {
   layout->addWidget(preview_, 1);
   layout->addWidget(build_buttons());
   input_changed();
-  resize(1100, 820);
+  fit_to_screen(*this, {1100, 696});  // a 1280 x 800 screen under a title bar and a panel
 }
 
 ImportAnatomyDialog::~ImportAnatomyDialog() = default;

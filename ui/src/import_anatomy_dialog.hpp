@@ -20,6 +20,7 @@ class QGroupBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
+class QScrollArea;
 class QSpinBox;
 
 namespace palpa::ui {
@@ -75,6 +76,7 @@ class ImportAnatomyDialog : public QDialog {
   QCheckBox* grid_auto_ = nullptr;
   QSpinBox* rows_ = nullptr;
   QSpinBox* cols_ = nullptr;
+  QScrollArea* inputs_ = nullptr;  ///< the inputs above the preview, scrolling on a small screen
   QLabel* error_ = nullptr;
   QPushButton* import_button_ = nullptr;
   QPushButton* use_button_ = nullptr;

@@ -8,6 +8,7 @@
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QLabel>
+#include <QScrollArea>
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
@@ -50,6 +51,7 @@ void ImportAnatomyDialog::show_table_rows() {
     if (QWidget* label = form->labelForField(table_file_row_)) label->setVisible(choice == "file");
   }
   map_->setVisible(choice == "map");
+  inputs_->updateGeometry();  // the scroll area asks for its content's new height
 }
 
 void ImportAnatomyDialog::table_choice_changed() {

@@ -75,6 +75,10 @@ void InstructorTumourPanel::build_table(QVBoxLayout* layout) {
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setSectionResizeMode(2, QHeaderView::Stretch);
   table_->setMinimumHeight(100);
+  // It asks for no more than its minimum (not the 192 px of a table's size hint), so that the
+  // tab's controls and Remove fit the side panel on a 1280 x 800 screen; it takes any room
+  // to spare, and scrolls its rows when they are more than it shows.
+  table_->setSizePolicy(table_->sizePolicy().horizontalPolicy(), QSizePolicy::Ignored);
   layout->addWidget(table_, 1);
 
 }

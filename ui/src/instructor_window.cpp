@@ -37,6 +37,7 @@
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/body_view.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "palpa/ui/window_frame.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -47,7 +48,8 @@ constexpr int kClickSlop = 4;  // px: a press and release closer than this is a 
 
 InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
     : QMainWindow(parent), draft_(std::move(draft)) {
-  resize(1280, 800);
+  // A 1280 x 800 screen under a title bar and a desktop panel (smaller screens: less).
+  fit_to_screen(*this, {1272, 696});
   auto* central = new QWidget(this);
   auto* layout = new QHBoxLayout(central);
   view_ = new VtkView(central);

@@ -41,6 +41,7 @@
 #include "palpa/ui/session_charts.hpp"
 #include "palpa/ui/body_view.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "palpa/ui/window_frame.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -78,7 +79,7 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
 
   setWindowTitle(tr("Palpa: review (%1, trainee %2)")
                      .arg(QString::fromStdString(file_.filename().string()), QString::fromStdString(session_.info.trainee)));
-  resize(1200, 760);
+  fit_to_screen(*this, {1200, 696});  // a 1280 x 800 screen under a title bar and a panel
 
   auto* central = new QWidget(this);
   auto* layout = new QHBoxLayout(central);

@@ -7,10 +7,14 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPlainTextEdit>
+#include <QStyle>
+#include <QPushButton>
+#include <QScrollArea>
 #include <QVBoxLayout>
 #include <opencv2/core.hpp>
 
 #include "palpa/report/images.hpp"
+#include "palpa/ui/window_frame.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -84,33 +88,58 @@ ScoreCard::ScoreCard(const score::Score& score, const QString& session_path, QWi
   title->setFont(big);
   title->setStyleSheet(score.passed ? "color: #1b7a2a" : "color: #a33");
   layout->addWidget(title);
-  auto* body = new QHBoxLayout;
-  auto* card = new QPlainTextEdit(text_, this);
+  // The text and the maps scroll when the screen is too small for them (the maps alone are
+  // taller than a 1280 x 800 screen): the headline and Close stay in sight.
+  auto* scroll = new QScrollArea(this);
+  scroll->setObjectName("scoreCardBody");
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  auto* content = new QWidget(scroll);
+  auto* body = new QHBoxLayout(content);
+  body->setContentsMargins(0, 0, 0, 0);
+  auto* card = new QPlainTextEdit(text_, content);
   card->setReadOnly(true);
   card->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
   card->setMinimumSize(520, 360);
   body->addWidget(card, 1);
-  auto* maps = new QVBoxLayout;
-  // The report's own figures (OpenCV): the card and the exported HTML show the same maps.
-  coverage_ = add_map(maps, tr("Coverage: time spent over each part of the exam region"), &report::coverage_heatmap,
-                      score, this);
-  maps->addWidget(legend({{"#440154", tr("brief")}, {"#21918c", tr("longer")}, {"#fde725", tr("longest contact")},
-                          {"#c8c8c8", tr("untouched")}},
-                         this));
-  pressure_ = add_map(maps, tr("Pressure: deepest level reached (light, medium, deep)"), &report::pressure_map, score,
-                      this);
-  maps->addWidget(legend({{"#c8c8c8", tr("untouched")}, {"#c6dbef", tr("light")}, {"#6baed6", tr("medium")},
-                          {"#08519c", tr("deep")}},
-                         this));
-  maps->addStretch(1);
-  body->addLayout(maps);
-  layout->addLayout(body, 1);
-  layout->addWidget(new QLabel(tr("Session saved in %1. The tumours are shown in the view, with lines from your marks.")
-                                   .arg(session_path),
-                               this));
+  body->addLayout(build_maps(score, content));
+  scroll->setWidget(content);
+  layout->addWidget(scroll, 1);
+  auto* saved = new QLabel(tr("Session saved in %1. The tumours are shown in the view, with lines from your marks.")
+                               .arg(session_path),
+                           this);
+  saved->setWordWrap(true);
+  layout->addWidget(saved);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, this);
+  close_ = buttons->button(QDialogButtonBox::Close);
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
   layout->addWidget(buttons);
+  // As wide as the text and the maps side by side, as tall as the screen allows.
+  const int scrollbar = scroll->style()->pixelMetric(QStyle::PM_ScrollBarExtent);
+  const QSize whole = layout->sizeHint() - scroll->sizeHint() + content->sizeHint() + QSize(scrollbar, 0);
+  fit_to_screen(*this, whole);
+}
+
+// The report's own figures (OpenCV): the card and the exported HTML show the same maps.
+QVBoxLayout* ScoreCard::build_maps(const score::Score& score, QWidget* parent) {
+  auto* maps = new QVBoxLayout;
+  auto* note = new QLabel(tr("Maps %1.").arg(QString::fromLatin1(report::kMapViewNote)), parent);
+  note->setObjectName("mapView");
+  note->setWordWrap(true);
+  note->setMaximumWidth(kMapWidth);
+  maps->addWidget(note);
+  coverage_ = add_map(maps, tr("Coverage: time spent over each part of the exam region"), &report::coverage_heatmap,
+                      score, parent);
+  maps->addWidget(legend({{"#440154", tr("brief")}, {"#21918c", tr("longer")}, {"#fde725", tr("longest contact")},
+                          {"#c8c8c8", tr("untouched")}},
+                         parent));
+  pressure_ = add_map(maps, tr("Pressure: deepest level reached (light, medium, deep)"), &report::pressure_map, score,
+                      parent);
+  maps->addWidget(legend({{"#c8c8c8", tr("untouched")}, {"#c6dbef", tr("light")}, {"#6baed6", tr("medium")},
+                          {"#08519c", tr("deep")}},
+                         parent));
+  maps->addStretch(1);
+  return maps;
 }
 
 }  // namespace palpa::ui

@@ -112,6 +112,7 @@ SessionCharts::SessionCharts(const session::Session& session, const score::Score
                       "<span style='color:%7'>&#9475; replay time</span> &nbsp; (click to seek)")
                        .arg(css(kForce), css(kLevel[1]), css(kLevel[2]), css(kLevel[3]), css(kMark), css(kLimit),
                             css(kCursor)));
+  legend_->setWordWrap(true);  // a narrow window (a small screen) gets two lines, not a wider window
   layout->addWidget(legend_);
 
   render_window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();

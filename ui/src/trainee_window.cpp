@@ -39,6 +39,7 @@
 #include "palpa/ui/force_gauge.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/vtk_view.hpp"
+#include "palpa/ui/window_frame.hpp"
 #include "palpa/vec3.hpp"
 
 namespace palpa::ui {
@@ -87,7 +88,7 @@ TraineeWindow::TraineeWindow(std::unique_ptr<live::LiveExercise> exercise, const
       dial_(exercise_->thresholds(), live::PressureDial::middle_of(live::PressureLevel::Medium),
             exercise_->deepest_share()) {
   setWindowTitle(tr("Palpa: trainee exercise (%1)").arg(case_name));
-  resize(1200, 760);
+  fit_to_screen(*this, {1200, 696});  // a 1280 x 800 screen under a title bar and a panel
 
   auto* central = new QWidget(this);
   auto* layout = new QHBoxLayout(central);

@@ -1,11 +1,14 @@
 #pragma once
 // The score card after Finish: pass or fail, the gates and the metrics (score::summary_text)
 // beside the session's coverage heatmap and pressure map (the report's images, which reveal
-// the tumours with lines from the marks), and where the session was saved.
+// the tumours with lines from the marks), and where the session was saved. The text and the
+// maps scroll when the screen is smaller than they are; the headline and Close stay in sight.
 #include <QDialog>
 #include <QString>
 
 class QLabel;
+class QPushButton;
+class QVBoxLayout;
 
 #include "palpa/score/score.hpp"
 
@@ -21,11 +24,16 @@ class ScoreCard : public QDialog {
   /// The maps as shown (pixmaps, scaled to kMapWidth).
   QLabel* coverage_map() const { return coverage_; }
   QLabel* pressure_map() const { return pressure_; }
+  /// The Close button: in sight on any screen the card fits (the text and maps scroll).
+  QPushButton* close_button() const { return close_; }
 
   static constexpr int kMapWidth = 520;  ///< px: the figures' own legends stay legible
 
  private:
+  QVBoxLayout* build_maps(const score::Score& score, QWidget* parent);
+
   QLabel* coverage_ = nullptr;
+  QPushButton* close_ = nullptr;
   QLabel* pressure_ = nullptr;
   QString headline_;
   QString text_;
