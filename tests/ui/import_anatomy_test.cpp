@@ -23,7 +23,9 @@
 #include <QtTest>
 #include <fstream>
 
+#include <vtkCamera.h>
 #include <vtkDataArray.h>
+#include <vtkRenderer.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkScalarBarActor.h>
@@ -35,6 +37,7 @@
 #include "palpa/anatomy_io/anatomy_io.hpp"
 #include "palpa/author/case_draft.hpp"
 #include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "fits_screen.hpp"
@@ -103,6 +106,13 @@ QString write_dome(const QTemporaryDir& dir) {
   palpa::anatomy_io::write_label_volume(path.toStdString(),
                                         palpa::anatomy::testing::voxelize(palpa::anatomy::testing::dome_on_plane(), 2e-3));
   return path;
+}
+
+/// `mesh` turned a quarter round the x axis: what faced +z faces +y (a chest wall in RAS
+/// coordinates faces the breast's front, +y).
+palpa::anatomy::TriangleMesh facing_y(palpa::anatomy::TriangleMesh mesh) {
+  for (auto& p : mesh.points) p = {p[0], p[2], -p[1]};
+  return mesh;
 }
 
 std::string read_text(const QString& path) {
@@ -289,6 +299,36 @@ class ImportAnatomyTest : public QObject {
     palpa::ui::testing::check_fits_screen(*dialog, buttons);
     click(button(dialog, "Cancel"));
     QTRY_VERIFY(!dialog->isVisible());
+  }
+
+  // Skin and support meshes whose support faces +y (as the VICTRE breast's chest wall):
+  // after "Use this case" the view looks down the body's press axis, at its free side, not
+  // at the back of the support.
+  void anImportedBodyIsSeenFromItsFreeSide() {
+    QTemporaryDir dir;
+    const auto dome = palpa::anatomy::testing::dome_on_plane();
+    const QString skin = dir.filePath("skin.stl"), support = dir.filePath("support.stl");
+    palpa::anatomy_io::write_mesh(skin.toStdString(), facing_y(palpa::anatomy::testing::skin_mesh(dome, 2e-3)));
+    palpa::anatomy_io::write_mesh(support.toStdString(), facing_y(palpa::anatomy::testing::support_mesh(dome)));
+    InstructorWindow window{palpa::author::CaseDraft()};
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QDialog* dialog = open_import(window);
+    QVERIFY(dialog);
+    type_line(dialog, "importPath", skin);
+    type_line(dialog, "supportPath", support);
+    click(button(dialog, "Import"));
+    QVERIFY2(dialog->findChild<QLabel*>("importError")->text().isEmpty(),
+             qPrintable(dialog->findChild<QLabel*>("importError")->text()));
+    click(button(dialog, "Use this case"));
+    QTRY_VERIFY(!dialog->isVisible());
+    const auto scene = palpa::scene::Scene::build(window.draft().valid_case(), "imported");
+    const palpa::Vec3 up = scene.body(0).press_axis.up;
+    QVERIFY2(up.y() > 0.95, qPrintable(QString("%1 %2 %3").arg(up.x()).arg(up.y()).arg(up.z())));
+    double d[3];
+    window.renderer()->GetActiveCamera()->GetDirectionOfProjection(d);
+    const double along = palpa::Vec3(d[0], d[1], d[2]).dot(up);
+    QVERIFY2(along < -0.95, qPrintable(QString::number(along)));
   }
 
   // A mapping of many labels is recorded whole entries at a time, within what a case's

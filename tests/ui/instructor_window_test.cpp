@@ -42,7 +42,9 @@
 #include <fstream>
 #include <memory>
 #include <stdexcept>
+#include <vtkCamera.h>
 #include <vtkDataArray.h>
+#include <vtkRenderer.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
@@ -51,6 +53,7 @@
 #include "palpa/engine/device.hpp"
 #include "palpa/io/case_file.hpp"
 #include "palpa/io/thresholds.hpp"
+#include "palpa/scene/scene.hpp"
 #include "palpa/session/session_reader.hpp"
 #include "palpa/ui/instructor_exam_panel.hpp"
 #include "palpa/ui/instructor_preset_panel.hpp"
@@ -897,6 +900,26 @@ class InstructorWindowTest : public QObject {
     const QRect shown(remove->mapTo(side->viewport(), QPoint(0, 0)), remove->size());
     QVERIFY2(!side->verticalScrollBar()->isVisible() && side->viewport()->rect().contains(shown),
              qPrintable(QString("Remove tumour ends at y %1, the panel is %2 high").arg(shown.bottom()).arg(side->viewport()->height())));
+  }
+
+  // A body whose support faces +y (the imported VICTRE breast) is seen from its free side,
+  // down its press axis, not from behind the chest wall; so is the bundled breast (+z).
+  void aBodyOnASupportIsSeenFromItsFreeSide() {
+    for (const char* name : {"victre-breast.json", "default.json"}) {
+      InstructorWindow window{palpa::author::CaseDraft()};
+      show(window);
+      QVERIFY2(window.open_case(QString(PALPA_SOURCE_DIR "/data/cases/") + name), qPrintable(window.message()));
+      const auto file = palpa::io::load_case(std::string(PALPA_SOURCE_DIR "/data/cases/") + name);
+      const palpa::Vec3 up = palpa::scene::Scene::build(file, name).body(0).press_axis.up;
+      double d[3];
+      window.renderer()->GetActiveCamera()->GetDirectionOfProjection(d);
+      const double along = palpa::Vec3(d[0], d[1], d[2]).dot(up);
+      qInfo("%s: view direction . press axis = %.3f", name, along);
+      QVERIFY2(along < -0.95, qPrintable(QString::number(along)));
+      QTest::qWait(100);
+      const QImage frame = window.view()->frame();
+      QVERIFY2(skin_pixels(frame) > frame.width() * frame.height() / 10, qPrintable(QString::number(skin_pixels(frame))));
+    }
   }
 
   // A title typed without leaving the field is what Ctrl+S saves; typed and then undone,

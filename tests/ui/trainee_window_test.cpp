@@ -350,6 +350,22 @@ class TraineeWindowTest : public QObject {
     }
   }
 
+  // A body whose support faces +y (the imported breast) is seen from its free side: the
+  // default view looks down its press axis, as it looks down +z on the bundled breast.
+  void theDefaultViewLooksDownThePressAxis() {
+    for (const char* name : {"victre-breast.json", "default.json"}) {
+      QTemporaryDir dir;
+      const std::string path = std::string(PALPA_SOURCE_DIR "/data/cases/") + name;
+      palpa::ui::TraineeWindow window(make_exercise(dir.filePath("v.palpa"), path), name, false);
+      const palpa::Vec3 up = window.exercise().scene().body(0).press_axis.up;
+      double d[3];
+      window.renderer()->GetActiveCamera()->GetDirectionOfProjection(d);
+      const double along = palpa::Vec3(d[0], d[1], d[2]).dot(up);
+      qInfo("%s: press axis (%.2f, %.2f, %.2f), view direction . axis = %.3f", name, up.x(), up.y(), up.z(), along);
+      QVERIFY2(along < -0.95, qPrintable(QString::number(along)));
+    }
+  }
+
   // From the default view the pointer reaches the whole exam region of every bundled case
   // (from the front, the crest of the default breast hid its far slope).
   void defaultViewShowsTheWholeExamRegionOfEveryCase() {

@@ -47,10 +47,7 @@ std::array<double, 6> scene_bounds(const scene::Scene& scene) {
 void frame_region(vtkRenderer& renderer, const RegionFacing& region, std::array<double, 6> bounds, double margin) {
   auto* camera = renderer.GetActiveCamera();
   const Vec3 n = region.normal;
-  // The picture's up: +y across the normal (+z when the normal is along y).
-  Vec3 up = Vec3::UnitY() - Vec3::UnitY().dot(n) * n;
-  if (up.norm() < 0.2) up = Vec3::UnitZ() - Vec3::UnitZ().dot(n) * n;
-  up.normalize();
+  const Vec3 up = picture_up(n);
   const Vec3 right = up.cross(n);
   const double tan_half = std::tan(0.5 * camera->GetViewAngle() * std::numbers::pi / 180.0) / margin;
   // The nearest eye on the normal that sees every point within the (square) view cone.
@@ -65,6 +62,34 @@ void frame_region(vtkRenderer& renderer, const RegionFacing& region, std::array<
   camera->SetFocalPoint(region.centroid.x(), region.centroid.y(), region.centroid.z());
   camera->SetPosition(eye.x(), eye.y(), eye.z());
   camera->SetViewUp(up.x(), up.y(), up.z());
+  renderer.ResetCameraClippingRange(bounds.data());
+}
+
+std::optional<Vec3> free_side(const scene::Scene& scene) {
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t b = 0; b < scene.size(); ++b) {
+    if (scene.body(b).body.anchored()) sum += scene.body(b).press_axis.up;
+  }
+  if (!(sum.norm() > 0.0)) return std::nullopt;
+  return sum.normalized();
+}
+
+Vec3 picture_up(const Vec3& normal) {
+  Vec3 up = Vec3::UnitY() - Vec3::UnitY().dot(normal) * normal;
+  if (up.norm() < 0.2) up = Vec3::UnitZ() - Vec3::UnitZ().dot(normal) * normal;
+  return up.normalized();
+}
+
+void frame_from_free_side(vtkRenderer& renderer, std::array<double, 6> bounds, const Vec3& up, double zoom) {
+  auto* camera = renderer.GetActiveCamera();
+  const Vec3 centre(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]));
+  const Vec3 eye = centre + up;
+  const Vec3 view_up = picture_up(up);
+  camera->SetFocalPoint(centre.x(), centre.y(), centre.z());
+  camera->SetPosition(eye.x(), eye.y(), eye.z());
+  camera->SetViewUp(view_up.x(), view_up.y(), view_up.z());
+  renderer.ResetCamera(bounds.data());  // keeps the direction, backs off to see the box
+  camera->Zoom(zoom);
   renderer.ResetCameraClippingRange(bounds.data());
 }
 

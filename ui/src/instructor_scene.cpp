@@ -25,6 +25,7 @@
 
 #include "palpa/mat/mat_body.hpp"
 #include "palpa/render/tessellation.hpp"
+#include "palpa/ui/body_view.hpp"
 
 namespace palpa::ui {
 namespace {
@@ -150,6 +151,10 @@ void InstructorScene::set_bodies(const io::CaseFile& file) {
       } else {
         property->SetColor(0.70, 0.52, 0.46);
       }
+      // As the trainee window: no back faces. Where the contours meet (the flat rim of a
+      // breast on its chest wall, seen head-on from its free side) the bottom's back faces
+      // would show through the top in a checkerboard.
+      property->BackfaceCullingOn();
       property->SetSpecular(0.25);
       property->SetSpecularPower(20.0);
       bodies_->AddActor(s.actor);
@@ -233,6 +238,11 @@ std::optional<render::SurfacePick> InstructorScene::pick(const palpa::Vec3& orig
                                                           const palpa::Vec3& direction) const {
   if (!picker_) return std::nullopt;
   return picker_->pick(origin, direction);
+}
+
+std::optional<palpa::Vec3> InstructorScene::free_side() const {
+  if (!scene_) return std::nullopt;
+  return ui::free_side(*scene_);
 }
 
 std::array<double, 6> InstructorScene::bounds() const {

@@ -382,8 +382,13 @@ void InstructorWindow::show_problem(const author::AuthorProblem& p) {
 }
 
 void InstructorWindow::frame_camera() {
-  // Lower than the trainee's view: the skin and the dome's profile.
-  if (scene_->has_bodies()) frame_from_front(*renderer_, scene_->bounds(), 0.75, 1.3);
+  // A body on a support from its free side, down its press axis, whichever way the support
+  // faces (an imported breast's chest wall faces +y); free bodies from the front and above.
+  if (const auto up = scene_->free_side()) {
+    frame_from_free_side(*renderer_, scene_->bounds(), *up, 1.3);
+  } else if (scene_->has_bodies()) {
+    frame_from_front(*renderer_, scene_->bounds(), 0.75, 1.3);
+  }
   render();
 }
 

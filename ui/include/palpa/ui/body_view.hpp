@@ -3,6 +3,7 @@
 // background, no multisampling, trackball turning) and a camera looking at the bodies from
 // the front and above.
 #include <array>
+#include <optional>
 
 #include <vtkSmartPointer.h>
 
@@ -31,6 +32,19 @@ std::array<double, 6> scene_bounds(const scene::Scene& scene);
 /// the clipping range.
 void frame_region(vtkRenderer& renderer, const RegionFacing& region, std::array<double, 6> bounds,
                   double margin = 1.12);
+
+/// The way out of the support the scene's bodies rest on, their free side: the mean of their
+/// press axes (scene::SceneBody::press_axis, the area-weighted mean skeleton normal); none
+/// when no body rests on a support.
+std::optional<Vec3> free_side(const scene::Scene& scene);
+
+/// The picture's up when looking down `normal` (unit): +y across it, or +z when the normal
+/// is along y (the trainee's default view, the report's maps).
+Vec3 picture_up(const Vec3& normal);
+
+/// Looks at the box from its free side: down `up` (unit) onto the box's centre, the
+/// picture's up as picture_up, far enough to see the whole box, zoomed in.
+void frame_from_free_side(vtkRenderer& renderer, std::array<double, 6> bounds, const Vec3& up, double zoom = 1.25);
 
 /// Looks at the box from the front (-y) and above (`elevation` up per unit back), zoomed in.
 void frame_from_front(vtkRenderer& renderer, std::array<double, 6> bounds, double elevation = 0.9,

@@ -40,6 +40,8 @@ class InstructorScene {
   bool stiffness_overlay() const { return overlay_on_; }
 
   bool has_bodies() const { return scene_ != nullptr; }
+  /// The way out of the support the bodies rest on (ui::free_side); none for free bodies.
+  std::optional<palpa::Vec3> free_side() const;
   /// The rest top contour under a ray (see render::TopContourPicker).
   std::optional<render::SurfacePick> pick(const palpa::Vec3& origin, const palpa::Vec3& direction) const;
   /// Bounds of the drawn body surfaces {xmin, xmax, ymin, ymax, zmin, zmax}.

@@ -60,6 +60,8 @@ class InstructorWindow : public QMainWindow {
   static constexpr int kWarningRole = Qt::UserRole + 1;
   QLineEdit* title_edit() const { return title_; }
   const InstructorScene& scene() const { return *scene_; }
+  /// The bodies' renderer (its camera is the view's).
+  vtkRenderer* renderer() const { return renderer_; }
   QAction* undo_action() const { return undo_; }
   QAction* redo_action() const { return redo_; }
   /// Where a scene point (m) appears in the view (widget pixels).
