@@ -902,6 +902,22 @@ class InstructorWindowTest : public QObject {
              qPrintable(QString("Remove tumour ends at y %1, the panel is %2 high").arg(shown.bottom()).arg(side->viewport()->height())));
   }
 
+  // Ctrl+W closes the window with no window manager (no active window, so no shortcut
+  // fires), sent to the window and to its view.
+  void ctrlWClosesTheWindow() {
+    for (const bool to_view : {false, true}) {
+      InstructorWindow window{palpa::author::CaseDraft()};
+      show(window);
+      QVERIFY(!window.isActiveWindow());
+      if (to_view) {
+        QTest::keyClick(window.view()->input(), Qt::Key_W, Qt::ControlModifier);
+      } else {
+        QTest::keyClick(&window, Qt::Key_W, Qt::ControlModifier);
+      }
+      QTRY_VERIFY(!window.isVisible());
+    }
+  }
+
   // A body whose support faces +y (the imported VICTRE breast) is seen from its free side,
   // down its press axis, not from behind the chest wall; so is the bundled breast (+z).
   void aBodyOnASupportIsSeenFromItsFreeSide() {

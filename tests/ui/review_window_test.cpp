@@ -386,6 +386,23 @@ class ReviewWindowTest : public QObject {
     palpa::ui::testing::check_fits_screen(*w, {export_button, w->play_button()});
   }
 
+  // Ctrl+W closes it with no window manager (no active window, no shortcut), sent to the
+  // window or to its view.
+  void ctrlWClosesTheWindow() {
+    for (const bool to_view : {false, true}) {
+      auto w = open_review(kExpert);
+      w->show();
+      QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+      QVERIFY(!w->isActiveWindow());
+      if (to_view) {
+        QTest::keyClick(w->view()->input(), Qt::Key_W, Qt::ControlModifier);
+      } else {
+        QTest::keyClick(w.get(), Qt::Key_W, Qt::ControlModifier);
+      }
+      QTRY_VERIFY(!w->isVisible());
+    }
+  }
+
   void commandLineRejectsBadSessions() {
     QTemporaryDir dir;
     const QString bad = dir.filePath("bad.palpa");

@@ -76,6 +76,7 @@ InstructorWindow::InstructorWindow(author::CaseDraft draft, QWidget* parent)
   connect_panels();
   refresh();
   frame_camera();
+  close_on_ctrl_w(*this, view_->input());
 }
 
 QWidget* InstructorWindow::build_side(QWidget* parent) {

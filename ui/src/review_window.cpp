@@ -142,6 +142,7 @@ ReviewWindow::ReviewWindow(session::Session session, score::Score score, std::fi
   fill_metrics();
   set_time(span_.start);
   timer_.start(16);
+  close_on_ctrl_w(*this, view_->input());  // as the trainee and instructor windows
 }
 
 ReviewWindow::~ReviewWindow() = default;

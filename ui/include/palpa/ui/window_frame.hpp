@@ -1,11 +1,13 @@
 #pragma once
 // What every Palpa window and dialog does with its frame: it opens at a size that fits the
 // screen it opens on, title bar and desktop panel included (a 1280 x 800 laptop leaves
-// about 1280 x 730 for the frame).
+// about 1280 x 730 for the frame), and Ctrl+W closes it from its own keys, also on a
+// display without a window manager, where no window is active and no shortcut fires.
 #include <QSize>
 
 class QRect;
 class QWidget;
+class QWindow;
 
 namespace palpa::ui {
 
@@ -22,5 +24,9 @@ inline constexpr QSize kDecoration{8, 34};
 /// Resizes `window` (a top-level widget) to fitted_size on the screen it opens on: its
 /// parent's screen for a dialog, else the screen under it.
 void fit_to_screen(QWidget& window, QSize preferred);
+
+/// Ctrl+W closes `window`: a shortcut while it is active, and its key events (and those of
+/// `view`, a VTK view's own native window, which are not the window's) when it is not.
+void close_on_ctrl_w(QWidget& window, QWindow* view = nullptr);
 
 }  // namespace palpa::ui
