@@ -29,6 +29,7 @@
 #include "palpa/ui/review_window.hpp"
 #include "palpa/ui/session_paths.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/window_frame.hpp"
 #include "session_upload.hpp"
 
 namespace palpa::gui {
@@ -164,6 +165,7 @@ QMainWindow* AppWindows::open_trainee(const QString& case_path, QWidget* parent)
     first_trainee_ = false;
     adopt(*window);
     window->show();
+    ui::take_keys(*window);  // opened from another window: no window manager may activate it
     std::fprintf(stderr, "palpa: recording the session in %s\n", options.session_path.c_str());
     return window;
   } catch (const device::DeviceError& e) {
@@ -189,6 +191,7 @@ QMainWindow* AppWindows::open_review(const QString& session_path, QWidget* paren
     auto* window = new ui::ReviewWindow(std::move(session), std::move(score), path);
     adopt(*window);
     window->show();
+    ui::take_keys(*window);  // opened from another window: no window manager may activate it
     return window;
   } catch (const session::SessionError& e) {
     fail(QString::fromStdString(e.what()), parent);
@@ -210,6 +213,7 @@ QMainWindow* AppWindows::open_instructor(const QString& case_path, QWidget* pare
     window->set_sessions_dir(ui::try_it_sessions_dir());  // apart from the trainees' sessions
     adopt(*window);
     window->show();
+    ui::take_keys(*window);  // opened from another window: no window manager may activate it
     return window;
   } catch (const io::CaseError& e) {
     fail(QString::fromStdString(e.what()), parent);

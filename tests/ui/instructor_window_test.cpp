@@ -34,6 +34,7 @@
 #include <QStyle>
 #include <QTemporaryDir>
 #include <QTimer>
+#include <QToolBar>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
 #include <QtTest>
@@ -916,6 +917,33 @@ class InstructorWindowTest : public QObject {
       }
       QTRY_VERIFY(!window.isVisible());
     }
+  }
+
+  // "Try it" (its toolbar button clicked) opens a trainee window that takes the keys at
+  // once, without a click, also with no window manager: Up, sent where the display sends
+  // keys (the focus window), makes the pressure deeper there.
+  void tryItTakesTheKeysAtOnce() {
+    QTemporaryDir dir;
+    InstructorWindow window{palpa::author::CaseDraft(palpa::author::preset_defaults(Preset::Slab))};
+    window.set_sessions_dir(dir.filePath("sessions").toStdString());
+    show(window);
+    auto* bar = window.findChild<QToolBar*>("instructorToolbar");
+    QAction* try_action = nullptr;
+    for (auto* a : bar->actions()) try_action = a->text().remove('&') == "Try it" ? a : try_action;
+    QVERIFY(try_action);
+    QTest::mouseClick(bar->widgetForAction(try_action), Qt::LeftButton);
+    auto* trainee = window.try_window();
+    QVERIFY2(trainee, qPrintable(window.message()));
+    QTRY_VERIFY(trainee->isActiveWindow());
+    QTRY_COMPARE(QGuiApplication::focusWindow(), trainee->windowHandle());
+    const int step = trainee->pressure().step_in_level();
+    QTest::keyClick(QGuiApplication::focusWindow(), Qt::Key_Up);
+    QCOMPARE(trainee->pressure().step_in_level(), step + 1);
+    // Ctrl+W closes it the same way (the press alone: the window it closed is gone when the
+    // key comes up).
+    trainee->setProperty(palpa::ui::TraineeWindow::kCloseWithoutAsking, true);
+    QTest::keyPress(QGuiApplication::focusWindow(), Qt::Key_W, Qt::ControlModifier);
+    QTRY_VERIFY(window.try_window() == nullptr);
   }
 
   // A body whose support faces +y (the imported VICTRE breast) is seen from its free side,

@@ -15,6 +15,7 @@
 #include "palpa/ui/instructor_window.hpp"
 #include "palpa/ui/session_paths.hpp"
 #include "palpa/ui/trainee_window.hpp"
+#include "palpa/ui/window_frame.hpp"
 
 namespace palpa::ui {
 
@@ -133,6 +134,7 @@ TraineeWindow* InstructorWindow::try_it() {
     window->setAttribute(Qt::WA_DeleteOnClose);
     if (try_adopter_) try_adopter_(*window);
     window->show();
+    take_keys(*window, window->centralWidget());  // M and the arrows work before any click
     try_windows_.emplace_back(window);
     set_message(tr("Trying the case; the session is recorded in %1.").arg(QString::fromStdString(options.session_path.string())));
     return window;

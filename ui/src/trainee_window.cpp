@@ -399,11 +399,7 @@ void TraineeWindow::finish() {
   score_card_->setAttribute(Qt::WA_DeleteOnClose, false);
   // Without a window manager nothing gives the keys back to this window when the card
   // closes: take them back, so M, Ctrl+W and Ctrl+Q work without a click.
-  connect(score_card_, &QDialog::finished, this, [this] {
-    activateWindow();
-    raise();
-    centralWidget()->setFocus();
-  });
+  connect(score_card_, &QDialog::finished, this, [this] { take_keys(*this, centralWidget()); });
   score_card_->show();
 }
 

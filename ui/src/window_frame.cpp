@@ -57,6 +57,12 @@ void fit_to_screen(QWidget& window, QSize preferred) {
   window.resize(fitted_size(preferred, screen->availableGeometry(), decoration));
 }
 
+void take_keys(QWidget& window, QWidget* focus) {
+  window.activateWindow();
+  window.raise();
+  if (focus) focus->setFocus(Qt::ActiveWindowFocusReason);
+}
+
 void close_on_ctrl_w(QWidget& window, QWindow* view) {
   auto* shortcut = new QShortcut(QKeySequence(QObject::tr("Ctrl+W")), &window);
   QObject::connect(shortcut, &QShortcut::activated, &window, &QWidget::close);

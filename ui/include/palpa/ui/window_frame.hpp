@@ -25,6 +25,11 @@ inline constexpr QSize kDecoration{8, 34};
 /// parent's screen for a dialog, else the screen under it.
 void fit_to_screen(QWidget& window, QSize preferred);
 
+/// Makes `window` (shown) the active window, raised, with the keyboard focus on `focus` (or
+/// where it last was): without a window manager nothing else does, and a window opened
+/// from another would take no keys until clicked.
+void take_keys(QWidget& window, QWidget* focus = nullptr);
+
 /// Ctrl+W closes `window`: a shortcut while it is active, and its key events (and those of
 /// `view`, a VTK view's own native window, which are not the window's) when it is not.
 void close_on_ctrl_w(QWidget& window, QWindow* view = nullptr);
