@@ -316,7 +316,8 @@ TEST(FalconKinematicsIndependent, TheDimensionsAreLibnifalcon101s) {
   // Palpa used libnifalcon 1.0's dimensions until libnifalcon's later correction came to
   // light (c, r and s: see kLibnifalcon101); the same thigh angles put the grip up to
   // 3.75 mm apart under the two sets (TheOldDimensionsPutTheGripUpTo4MillimetresElsewhere).
-  const Geometry& g = Kinematics().geometry();
+  const Kinematics kinematics;
+  const Geometry& g = kinematics.geometry();  // a reference into an object that outlives the checks
   const Dims& want = kLibnifalcon101;
   EXPECT_EQ(g.a, want.a);
   EXPECT_EQ(g.b, want.b);

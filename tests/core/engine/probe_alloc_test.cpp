@@ -41,14 +41,17 @@ TEST_P(QueryAllocation, AQueryAllocatesNothingWarmOrColdWithShearAndTumours) {
   bisect.method = FootPointMethod::Bisect;
   const long before = palpa::test::allocations();
   double checksum = 0.0;
+  int under_skeleton = 0;  // presses read along the column (docs/model.md)
   for (int k = 0; k < 2000; ++k) {
     // In and out of the body (cold starts after leaving its box), over the tumour, far away.
     const double t = 0.01 * k;
     const Vec3 q(0.06 * std::sin(t), 0.07 * std::cos(0.7 * t), 0.03 + 0.04 * std::sin(2.3 * t));
     const auto r = scene.probe(k % 50 == 0 ? Vec3(5.0, 5.0, 5.0) : q, state, k % 7 == 0 ? bisect : fast);
     checksum += r.force.total.norm();
+    under_skeleton += r.body >= 0 && r.contact.depth > r.contact.radius ? 1 : 0;
   }
   EXPECT_EQ(palpa::test::allocations() - before, 0);
+  EXPECT_GT(under_skeleton, 50);  // the column's search ran too
   EXPECT_GT(checksum, 0.0);  // some queries were in contact
 
   // The counter does see allocations: a fresh state allocates.
