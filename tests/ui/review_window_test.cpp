@@ -32,6 +32,11 @@
 #include "palpa/ui/vtk_view.hpp"
 #include "fits_screen.hpp"
 
+#include <vtkCamera.h>
+#include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
+#include "palpa/io/case_file.hpp"
+#include "palpa/scene/scene.hpp"
 #include <vtkAxis.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -384,6 +389,28 @@ class ReviewWindowTest : public QObject {
     QPushButton* export_button = nullptr;
     for (auto* b : w->findChildren<QPushButton*>()) export_button = b->text().startsWith("Export") ? b : export_button;
     palpa::ui::testing::check_fits_screen(*w, {export_button, w->play_button()});
+  }
+
+  // A session on the imported breast (its free side faces +y) is replayed seen from that
+  // side, down the body's press axis, not from behind; the default breast still from the front.
+  void anImportedBreastIsReplayedFromItsFreeSide() {
+    QTemporaryDir dir;
+    const QString session = dir.filePath("victre.palpa");
+    QProcess cli;
+    cli.start(PALPA_CLI_EXE, {"exercise", PALPA_SOURCE_DIR "/data/cases/victre-breast.json", "--trainee", "t",
+                              "--style", "light", "--seed", "3", "--out", session});
+    QVERIFY(cli.waitForFinished(60000));
+    QCOMPARE(cli.exitCode(), 0);
+    auto w = open_review(session.toStdString());
+    w->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    auto* camera = w->view()->renderWindow()->GetRenderers()->GetFirstRenderer()->GetActiveCamera();
+    double direction[3];
+    camera->GetDirectionOfProjection(direction);
+    const auto case_file = palpa::io::load_case(PALPA_SOURCE_DIR "/data/cases/victre-breast.json");
+    const auto up = palpa::scene::Scene::build(case_file, "victre").body(0).press_axis.up;
+    const double along = direction[0] * up.x() + direction[1] * up.y() + direction[2] * up.z();
+    QVERIFY2(along < -0.95, qPrintable(QString("looks along %1 of the press axis").arg(along)));
   }
 
   // Ctrl+W closes it with no window manager (no active window, no shortcut), sent to the

@@ -153,7 +153,12 @@ void ReviewWindow::build_scene() {
 
   surfaces_ = std::make_unique<BodySurfaces>(*meshes_, renderer_);
   surfaces_->set_opacity(0.35);  // the tumours are revealed inside
-  frame_from_front(*renderer_, scene_bounds(*scene_));
+  // A body on a support from its free side (an imported breast faces +y), others from the front.
+  if (const auto up = free_side(*scene_)) {
+    frame_from_free_side(*renderer_, scene_bounds(*scene_), *up);
+  } else {
+    frame_from_front(*renderer_, scene_bounds(*scene_));
+  }
 
   for (const auto& t : score_.tumours) {
     renderer_->AddActor(t.found ? sphere(t.center, t.radius, 0.20, 0.65, 0.25) : sphere(t.center, t.radius, 0.75, 0.15, 0.15));
