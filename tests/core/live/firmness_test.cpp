@@ -73,13 +73,25 @@ double least_standout(Reader& r, const scene::Scene& s, const Vec3& x, double ra
   return worst;
 }
 
-TEST(Firmness, OverTheDefaultTumourItStandsOutFromEverySpotAround) {
-  const auto placed = placed_case("default.json");
-  const auto s = scene::Scene::build(placed, "default.json");
+// A bundled case with its tumours placed (seed 7), and the same tissue without them.
+struct WithAndWithout {
+  io::CaseFile placed;
+  scene::Scene s, plain;
+};
+
+WithAndWithout with_and_without(const std::string& name) {
+  auto placed = placed_case(name);
   auto plain_case = placed;
   plain_case.tumours.clear();
-  const auto plain = scene::Scene::build(plain_case, "default.json");
-  Reader r(s), rp(plain);
+  auto s = scene::Scene::build(placed, name);
+  auto plain = scene::Scene::build(plain_case, name);
+  return {std::move(placed), std::move(s), std::move(plain)};
+}
+
+TEST(Firmness, OverTheDefaultTumourItStandsOutFromEverySpotAround) {
+  const auto both = with_and_without("default.json");
+  const auto& s = both.s;
+  Reader r(s), rp(both.plain);
   const auto& t = s.body(0).tumours.at(0);
   const Vec3 c(t.center[0], t.center[1], t.center[2]);
   const Spot over = spot_under(s, c);
@@ -106,19 +118,16 @@ TEST(Firmness, OverTheDefaultTumourItStandsOutFromEverySpotAround) {
 // stiffness in N/mm read -0.6 N/mm at seams of the imported tissue), and each tumour reads
 // at least a quarter firmer than the same tissue without it. Printed, not yet asserted:
 // the largest step between neighbouring spots of the grid and how far each tumour stands
-// out from the tissue 20 mm around it (BENCHMARKS.md, "Force mode's firmness"): the
+// out from the tissue 20 mm around it (BENCHMARKS.md, "Force mode's firmness around a tumour"): the
 // imported tissue itself varies by more than the tumours add (3.0-5.6 kPa where it is a
 // pad thick or more, firmest near the rim where the skin is a larger share of a thin column).
 TEST(Firmness, TheImportedBreastNeverReadsNegativeAndItsTumoursReadFirmer) {
-  const auto placed = placed_case("victre-breast.json");
-  const auto s = scene::Scene::build(placed, "victre-breast.json");
-  auto plain_case = placed;
-  plain_case.tumours.clear();
-  const auto plain = scene::Scene::build(plain_case, "victre-breast.json");
+  const auto both = with_and_without("victre-breast.json");
+  const auto& s = both.s;
   std::vector<io::Problem> problems;
-  const auto th = io::thresholds_from_case(io::to_json(placed), problems);
+  const auto th = io::thresholds_from_case(io::to_json(both.placed), problems);
   ASSERT_TRUE(problems.empty());
-  Reader r(s), rp(plain);
+  Reader r(s), rp(both.plain);
 #ifdef NDEBUG
   constexpr int kGrid = 24;
 #else
