@@ -112,12 +112,7 @@ FootPoint column_foot_point(const spline::BSplineSurface& skeleton, const Vec3& 
 }
 
 Contact column_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q, const Vec3& up) {
-  Contact c;
-  c.foot = foot;
-  std::array<double, mat::kSkeletonChannels> sk;
-  body.skeleton().evaluate(foot.u, foot.v, sk);
-  c.radius = std::max(0.0, sk[mat::kRadius]);
-  c.stiffness = std::max(0.0, sk[mat::kStiffness]);
+  Contact c = contact_at_foot(body, foot);
   double unit[3];
   mat::skeleton_normal(body.skeleton(), foot.u, foot.v, unit);
   const Vec3 n(unit[0], unit[1], unit[2]);

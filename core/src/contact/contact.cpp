@@ -8,7 +8,7 @@
 
 namespace palpa::contact {
 
-Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q) {
+Contact contact_at_foot(const mat::MatBody& body, const FootPoint& foot) {
   Contact c;
   c.foot = foot;
   std::array<double, mat::kSkeletonChannels> sk;
@@ -16,6 +16,11 @@ Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3
   // A fit may dip a little below 0 beside a kink or at the closed boundary: read it as 0.
   c.radius = std::max(0.0, sk[mat::kRadius]);
   c.stiffness = std::max(0.0, sk[mat::kStiffness]);
+  return c;
+}
+
+Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q) {
+  Contact c = contact_at_foot(body, foot);
   const Vec3 n = foot.su.cross(foot.sv);
   const Vec3 d = q - foot.point;
   const double len = d.norm();

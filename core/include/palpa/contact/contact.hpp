@@ -26,6 +26,9 @@ struct Contact {
   double support_depth = 0.0;
 };
 
+/// The foot point with R and k read at it (a dip below 0 read as 0); the rest at its defaults.
+Contact contact_at_foot(const mat::MatBody& body, const FootPoint& foot);
+
 /// Evaluates radius, stiffness and the outward direction at a foot point.
 Contact make_contact(const mat::MatBody& body, const FootPoint& foot, const Vec3& q);
 
