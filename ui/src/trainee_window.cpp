@@ -37,6 +37,7 @@
 #include "palpa/ui/coverage_overlay.hpp"
 #include "palpa/ui/body_view.hpp"
 #include "palpa/ui/force_gauge.hpp"
+#include "palpa/ui/push_back_trace.hpp"
 #include "palpa/ui/score_card.hpp"
 #include "palpa/ui/vtk_view.hpp"
 #include "palpa/ui/window_frame.hpp"
@@ -142,11 +143,10 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   const auto tumours = exercise_->placed_case().tumours.size();
   const QString task = tumours == 1 ? tr("Find the tumour.") : tumours == 0 ? tr("Is there a tumour?")
                                                                             : tr("Find the %1 tumours.").arg(tumours);
-  auto* help = new QLabel(tr("<b>%1</b><br>Move the pointer over the body: the finger slides "
-                             "over the skin, pressing at the pressure you choose. <b>Wheel</b> or <b>Up/Down</b>: "
-                             "lighter or deeper (light, medium, deep). Feel where the tissue pushes back harder "
-                             "at the same pressure, then press <b>M</b> to mark the finger's spot.<br>"
-                             "Left drag turns the view, Ctrl+wheel zooms.").arg(task),
+  auto* help = new QLabel(tr("<b>%1</b><br>Move the pointer over the body: the finger slides over the skin at the "
+                             "pressure you choose (<b>wheel</b> or <b>Up/Down</b>). A lump pushes back: a bump in the "
+                             "trace, the finger held back. <b>M</b> marks the finger's spot. Left drag turns the view, "
+                             "Ctrl+wheel zooms.").arg(task),
                           central);
   help->setWordWrap(true);
   side->addWidget(help);
@@ -161,6 +161,15 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   pressure_label_ = new QLabel(central);
   pressure_label_->setWordWrap(true);
   side->addWidget(pressure_label_);
+  trace_ = new PushBackTrace(central);
+  side->addWidget(trace_);
+  sticky_box_ = new QCheckBox(tr("Finger sticks on firm tissue"), central);
+  sticky_box_->setObjectName("stickyFinger");
+  sticky_box_->setToolTip(tr("Where the tissue is firmer than along the stroke so far, the finger follows the "
+                             "pointer more slowly, as a firm lump holds a sliding finger back; it catches up "
+                             "when the tissue is plain again or the pointer rests."));
+  sticky_box_->setChecked(true);
+  side->addWidget(sticky_box_);
   add_coverage_controls(side, central);
   force_mode_ = new QCheckBox(tr("Press to a force instead (F)"), central);
   force_mode_->setToolTip(tr("The finger sinks until it feels the chosen force (1-15 N): over a stiff lump it "
@@ -171,6 +180,7 @@ QWidget* TraineeWindow::build_side_panel(QWidget* central, QPushButton*& mark_bu
   auto* marks_box = new QGroupBox(tr("Marks"), central);
   auto* marks_layout = new QVBoxLayout(marks_box);
   marks_list_ = new QListWidget(marks_box);
+  marks_list_->setMinimumHeight(3 * marks_list_->fontMetrics().lineSpacing());  // three marks; it grows with the window
   marks_layout->addWidget(marks_list_);
   mark_button = new QPushButton(tr("Mark here (M)"), marks_box);
   mark_button->setObjectName("markHere");
@@ -304,12 +314,6 @@ QPoint TraineeWindow::to_view(const palpa::Vec3& point) const {
   return view_->to_view(*renderer_, point);
 }
 
-void TraineeWindow::palpate_at(const QPoint& pos) {
-  const auto [near, far] = view_->pointer_ray(*renderer_, pos);
-  picked_ = exercise_->pick(near, far - near);
-  exercise_->aim(picked_);  // off the bodies: the finger lifts where it was
-}
-
 void TraineeWindow::step_pressure(int steps) {
   if (force_target_ > 0.0) {
     force_target_ = std::clamp(force_target_ + steps, kMinForceTarget, kMaxForceTarget);
@@ -391,6 +395,7 @@ void TraineeWindow::finish() {
   remove_button_->setEnabled(false);
   mark_button_->setEnabled(false);
   gauge_->set_contact(live::ContactInfo{});  // no finger on the body any more
+  trace_->clear();
   gauge_->setEnabled(false);
   update_status();
   emit session_ended(QString::fromStdString(exercise_->session_path().string()), true);
@@ -508,6 +513,7 @@ void TraineeWindow::frame() {
       drawn_probe_ = c;
     }
     gauge_->set_contact(exercise_->contact());
+    feel(s);
     if (exercise_->device_switched() && device_banner_->isHidden()) {
       // The chosen device was unplugged (or failed): the force went to zero and the mouse
       // drives the probe now; the session goes on.
@@ -604,7 +610,10 @@ bool TraineeWindow::eventFilter(QObject* watched, QEvent* event) {
   switch (event->type()) {
     case QEvent::MouseMove: {
       auto* e = static_cast<QMouseEvent*>(event);
-      if (e->buttons() != Qt::NoButton) request_render();
+      if (e->buttons() != Qt::NoButton) {
+        request_render();
+        control_display_.reset(Eigen::Vector2d(e->pos().x(), e->pos().y()));  // the view turns under the pointer
+      }
       if (e->buttons() == Qt::NoButton) palpate_at(e->pos());
       return false;  // VTK still turns the view on a drag
     }

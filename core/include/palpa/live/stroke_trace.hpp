@@ -38,8 +38,10 @@ class StrokeTrace {
   static constexpr double kBaselineSpan = 0.04;
   /// m: a bump is judged only once the stroke has this much behind it.
   static constexpr double kSettledAlong = 0.015;
-  /// m: a larger move between two frames is a jump (a new stroke), not a slide.
-  static constexpr double kJump = 0.01;
+  /// m: a larger move of the finger between two frames is a jump (a new stroke), not a
+  /// slide. The finger pressed deep in a curved body can move several millimetres in a frame
+  /// while the pointer slides (its column turns under it): a slide at 10 cm/s moves 2 mm.
+  static constexpr double kJump = 0.025;
 
   /// One frame's reading: the finger at `finger` reads `firmness` (Pa; 0 or less: off the
   /// body, or a body without a modulus) at pressure setting `setting` (any number naming
@@ -74,7 +76,7 @@ class StrokeTrace {
 
 /// The control/display gain of the pseudo-haptic finger for a contrast (firmness over the
 /// stroke's baseline): (1 / contrast)^kGainPower, between kMinGain and 1.
-inline constexpr double kGainPower = 3.0;
+inline constexpr double kGainPower = 2.0;
 inline constexpr double kMinGain = 0.35;
 double control_display_gain(double contrast);
 
@@ -83,7 +85,7 @@ class ControlDisplay {
   /// s: the finger catches up with the pointer with this time constant.
   static constexpr double kCatchUp = 0.2;
   /// The finger never lags the pointer by more than this (px).
-  static constexpr double kMaxLag = 40.0;
+  static constexpr double kMaxLag = 30.0;
 
   /// The pointer is at `pointer` (px) now, `dt` s after the last call, over tissue that
   /// gives `gain` (control_display_gain). Returns where the finger is shown (px): moved by

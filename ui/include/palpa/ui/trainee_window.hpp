@@ -21,6 +21,7 @@
 #include "palpa/io/training.hpp"
 #include "palpa/live/live_coverage.hpp"
 #include "palpa/live/live_exercise.hpp"
+#include "palpa/live/stroke_trace.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
 class QCheckBox;
@@ -38,6 +39,7 @@ namespace palpa::ui {
 class VtkView;
 
 class ForceGauge;
+class PushBackTrace;
 class ScoreCard;
 class CoverageOverlay;
 
@@ -60,6 +62,13 @@ class TraineeWindow : public QMainWindow {
   live::LiveExercise& exercise() { return *exercise_; }
   VtkView* view() const { return view_; }
   ForceGauge* gauge() const { return gauge_; }
+  /// The push-back trace under the gauge (objectName "pushBackTrace").
+  PushBackTrace* push_back_trace() const { return trace_; }
+  /// The finger sticks on firm tissue (the pseudo-haptic control/display ratio,
+  /// docs/perception.md): checkbox "stickyFinger", on by default.
+  bool sticky_finger() const;
+  /// px between the pointer and the finger shown (0 unless the finger sticks).
+  double finger_lag() const { return control_display_.lag(); }
   /// The message shown when the chosen device faulted and the mouse took over (hidden before).
   QLabel* device_banner() const { return device_banner_; }
   BodySurfaces& surfaces() { return *surfaces_; }
@@ -154,6 +163,13 @@ class TraineeWindow : public QMainWindow {
   /// After the score: a mark that found a tumour green, a duplicate amber, a false one red.
   void colour_mark(const score::MarkResult& mark);
   void apply_pressure();
+  /// The window's pick under a view pixel (the bodies' top contours), if any.
+  std::optional<render::SurfacePick> pick_at(const QPoint& pos) const;
+  /// Each frame: the push-back trace reads the finger, and a finger left behind by the
+  /// control/display ratio catches up with a resting pointer.
+  void feel(const engine::SceneSnapshot& snapshot);
+  /// The pressure setting as the trace compares it (the dial's step, or the force target).
+  double pressure_setting() const { return force_target_ > 0.0 ? 100.0 + force_target_ : dial_.index(); }
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
   /// box grown by a margin for deformation); returns how many are visible.
   std::size_t cull_bodies();
@@ -202,6 +218,11 @@ class TraineeWindow : public QMainWindow {
   double force_target_ = 0.0;  // N; 0: level mode
   int wheel_rest_ = 0;         // wheel angle not yet a whole notch
   QLabel* pressure_label_ = nullptr;
+  PushBackTrace* trace_ = nullptr;
+  QCheckBox* sticky_box_ = nullptr;
+  live::ControlDisplay control_display_;
+  std::optional<QPoint> pointer_;  // where the pointer last was over the view (px)
+  QElapsedTimer pointer_clock_;    // since control_display_ last followed it
   QCheckBox* force_mode_ = nullptr;
   std::optional<render::SurfacePick> picked_;
   std::optional<score::Score> score_;
