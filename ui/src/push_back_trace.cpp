@@ -57,7 +57,7 @@ void PushBackTrace::fit_range() {
 
 QString PushBackTrace::text() const {
   const auto& points = trace_.points();
-  if (points.empty()) return tr("push-back trace: slide the finger over the body");
+  if (points.empty()) return tr("push-back trace: slide the finger over the body, inside its thin rim");
   const double now = points.back().firmness * 1e-3;
   if (trace_.along() < live::StrokeTrace::kSettledAlong) return tr("push-back: %1 kPa, keep sliding").arg(now, 0, 'f', 1);
   const double bump = trace_.contrast() - 1.0;

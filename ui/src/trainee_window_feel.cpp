@@ -4,6 +4,7 @@
 #include <QCheckBox>
 #include <QCursor>
 
+#include "palpa/live/press_control.hpp"
 #include "palpa/ui/push_back_trace.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
@@ -52,7 +53,10 @@ void TraineeWindow::palpate_at(const QPoint& pos) {
 
 void TraineeWindow::feel(const engine::SceneSnapshot& snapshot) {
   const auto& c = exercise_->contact();
-  trace_->feed(snapshot.t, Vec3(snapshot.probe[0], snapshot.probe[1], snapshot.probe[2]), c.body >= 0 ? c.firmness : 0.0,
+  // The thin rim ends a stroke: there the skin and the support make up most of the column
+  // and every stroke would end in a rise (the gauge says "thin tissue").
+  const bool tissue = c.body >= 0 && c.thickness >= live::kThinTissue;
+  trace_->feed(snapshot.t, Vec3(snapshot.probe[0], snapshot.probe[1], snapshot.probe[2]), tissue ? c.firmness : 0.0,
                pressure_setting());
   if (pointer_ && control_display_.lag() > kLagToFollow) palpate_at(*pointer_);
 }
