@@ -21,10 +21,27 @@ if(PALPA_SANITIZE)
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
 
+# The mouse's perceptual channel: the push-back trace and the finger that sticks on a lump.
+add_executable(ui_feel_tests
+  ui/push_back_feel_test.cpp
+)
+set_target_properties(ui_feel_tests PROPERTIES AUTOMOC ON)
+target_link_libraries(ui_feel_tests PRIVATE palpa_ui Qt5::Test)
+target_compile_definitions(ui_feel_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+vtk_module_autoinit(TARGETS ui_feel_tests MODULES ${VTK_LIBRARIES})
+palpa_warnings(ui_feel_tests)
+add_test(NAME ui.feel COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_feel_tests>)
+if(PALPA_SANITIZE)
+  set_tests_properties(ui.feel PROPERTIES ENVIRONMENT
+                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+endif()
+
 # Acceptance: palpation through the window's own input events, checked against fresh
 # presses, and a mouse trainee that must pass the default case (long form: PALPA_LONG_TESTS=1).
 add_executable(ui_acceptance_tests
   ui/palpation_acceptance_test.cpp
+  ui/person_trainee.cpp
+  ui/person_trainee.hpp
 )
 set_target_properties(ui_acceptance_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_acceptance_tests PRIVATE palpa_ui Qt5::Test)
@@ -53,9 +70,12 @@ else()
            aMouseTraineePassesEveryBundledCase:ladder-3.json)
   add_test(NAME ui.acceptance.hard COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
            "aMouseTraineePassesEveryBundledCase:ladder-4.json" "aMouseTraineePassesEveryBundledCase:two tumours")
+  add_test(NAME ui.acceptance.anatomy COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
+           "aMouseTraineePassesEveryBundledCase:victre-breast.json" "aMouseTraineePassesEveryBundledCase:no tumour")
   add_test(NAME ui.acceptance.limits COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_acceptance_tests>
            everyStepAtEverySpotStaysUnderTheSafetyLimit aMouseTraineePassesWithAStallingDevice)
-  set_tests_properties(ui.acceptance ui.acceptance.ladders ui.acceptance.hard ui.acceptance.limits PROPERTIES TIMEOUT 1200)
+  set_tests_properties(ui.acceptance ui.acceptance.ladders ui.acceptance.hard ui.acceptance.anatomy ui.acceptance.limits
+                     PROPERTIES TIMEOUT 1200)
 endif()
 
 # Review mode: replays data/sessions/expert.palpa (and sloppy.palpa for a failed score).
