@@ -18,6 +18,7 @@
 #include "palpa/io/case_file.hpp"
 #include "palpa/live/live_exercise.hpp"
 #include "palpa/ui/push_back_trace.hpp"
+#include "palpa/ui/screenshot.hpp"
 #include "palpa/ui/trainee_window.hpp"
 #include "palpa/ui/vtk_view.hpp"
 
@@ -33,14 +34,14 @@ std::unique_ptr<palpa::ui::TraineeWindow> open_window(const QString& session) {
   o.realtime.request_fifo = false;
   auto w = std::make_unique<palpa::ui::TraineeWindow>(
       std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(kDefaultCase), kDefaultCase, o), "default.json");
-  w->resize(960, 640);
+  if (!qEnvironmentVariableIsSet("PALPA_FEEL_SCREENSHOT")) w->resize(960, 640);  // else its own default size
   w->show();
   return w;
 }
 
 struct Stroke {
   double bump_near = 0.0, bump_far = 0.0;  // the trace's contrast, most, within / beyond 10 mm of (x, y0)
-  double lag_near = 0.0, lag_far = 0.0;    // px between pointer and finger, most
+  double lag_near = 0.0, lag_far = 0.0;    // px between pointer and finger, most, the finger within / beyond 10 mm
   QString text_at_bump;                    // the trace's words at the largest bump
 };
 
@@ -69,9 +70,15 @@ Stroke slide(palpa::ui::TraineeWindow& w, double x, double y0) {
     const double off = std::hypot(s.probe[0] - x, s.probe[1] - y0);
     const double bump = w.push_back_trace()->trace().contrast();
     auto& most = off < 0.010 ? out.bump_near : out.bump_far;
-    if (bump > std::max(out.bump_near, out.bump_far)) out.text_at_bump = w.push_back_trace()->text();
+    if (bump > std::max(out.bump_near, out.bump_far)) {
+      out.text_at_bump = w.push_back_trace()->text();
+      // The documentation's screenshot of the window as a lump passes under the finger.
+      const QString png = qEnvironmentVariable("PALPA_FEEL_SCREENSHOT");
+      static bool taken = false;
+      if (!png.isEmpty() && !taken && bump > 1.17 && w.sticky_finger() && x < 0.0) taken = palpa::ui::save_screenshot(w, png);
+    }
     most = std::max(most, bump);
-    auto& lag = std::abs(y - y0) < 0.010 ? out.lag_near : out.lag_far;
+    auto& lag = off < 0.010 ? out.lag_near : out.lag_far;
     lag = std::max(lag, w.finger_lag());
   }
   return out;

@@ -10,7 +10,8 @@ namespace palpa::ui {
 
 namespace {
 constexpr double kShownBump = 0.05;  // below this the label says "steady" (half a person's Weber fraction)
-constexpr double kPlotHeight = 40.0; // px
+constexpr double kPlotLeast = 40.0;  // px: the plot at the least (a small screen)
+constexpr double kPlotHeight = 90.0; // px: the plot when the panel has room
 }  // namespace
 
 PushBackTrace::PushBackTrace(QWidget* parent) : QWidget(parent) {
@@ -21,10 +22,12 @@ PushBackTrace::PushBackTrace(QWidget* parent) : QWidget(parent) {
   setMinimumHeight(minimumSizeHint().height());
 }
 
-QSize PushBackTrace::sizeHint() const { return {280, minimumSizeHint().height()}; }
+QSize PushBackTrace::sizeHint() const {
+  return {280, static_cast<int>(kPlotHeight) + 2 * fontMetrics().lineSpacing() + 8};
+}
 
 QSize PushBackTrace::minimumSizeHint() const {
-  return {160, static_cast<int>(kPlotHeight) + 2 * fontMetrics().lineSpacing() + 8};
+  return {160, static_cast<int>(kPlotLeast) + 2 * fontMetrics().lineSpacing() + 8};
 }
 
 void PushBackTrace::feed(double t, const Vec3& finger, double firmness, double setting) {
@@ -70,7 +73,7 @@ QString PushBackTrace::text() const {
 
 QRectF PushBackTrace::plot() const {
   const double top = fontMetrics().lineSpacing() * 2.0 + 4.0;
-  return {1.0, top, std::max(10.0, width() - 2.0), std::max(10.0, std::min(kPlotHeight, height() - top - 1.0))};
+  return {1.0, top, std::max(10.0, width() - 2.0), std::max(10.0, height() - top - 1.0)};
 }
 
 void PushBackTrace::paintEvent(QPaintEvent*) {
@@ -94,13 +97,30 @@ void PushBackTrace::paintEvent(QPaintEvent*) {
     (k == 0 ? line.moveTo(at(q.t, q.firmness)) : line.lineTo(at(q.t, q.firmness)));
     (k == 0 ? base.moveTo(at(q.t, q.baseline)) : base.lineTo(at(q.t, q.baseline)));
   }
+  // Where the tissue is firmer than the stroke's baseline, the area between them is filled:
+  // a lump is a filled bump.
+  QPainterPath above = line;
+  for (std::size_t k = points.size(); k-- > 0;) above.lineTo(at(points[k].t, points[k].baseline));
+  above.closeSubpath();
+  p.save();
+  p.setClipRect(box);
+  QPainterPath over_baseline = base;  // the part of the plot above the dashed line
+  over_baseline.lineTo(at(points.back().t, high_ * 1e3).x(), box.top() - 1.0);
+  over_baseline.lineTo(at(points.front().t, high_ * 1e3).x(), box.top() - 1.0);
+  over_baseline.closeSubpath();
+  p.fillPath(above.intersected(over_baseline), QColor(235, 140, 60, 110));
+  p.restore();
   p.setPen(QPen(palette().dark().color(), 1.0, Qt::DashLine));
   p.drawPath(base);
   p.setPen(QPen(QColor(200, 90, 20), 2.0));
   p.drawPath(line);
+  QFont small = font();
+  small.setPointSizeF(font().pointSizeF() * 0.85);
+  p.setFont(small);
   p.setPen(palette().text().color());
-  p.drawText(box.adjusted(3, 1, -3, -1), Qt::AlignRight | Qt::AlignTop, tr("%1 kPa").arg(high_, 0, 'f', 1));
-  p.drawText(box.adjusted(3, 1, -3, -1), Qt::AlignRight | Qt::AlignBottom, tr("%1 kPa").arg(low_, 0, 'f', 1));
+  p.drawText(box.adjusted(3, 1, -3, -1), Qt::AlignLeft | Qt::AlignTop, tr("%1 kPa").arg(high_, 0, 'f', 1));
+  p.drawText(box.adjusted(3, 1, -3, -1), Qt::AlignLeft | Qt::AlignBottom, tr("%1 kPa").arg(low_, 0, 'f', 1));
+  p.drawText(box.adjusted(3, 1, -3, -1), Qt::AlignRight | Qt::AlignBottom, tr("last 3 s"));
 }
 
 }  // namespace palpa::ui
