@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 #include <QApplication>
+#include <QCheckBox>
 #include <QEventLoop>
 #include <QTimer>
 #include <QWindow>
@@ -143,7 +144,7 @@ void fill_frame_figures(const FrameTotals& totals, Row& row) {
   row.cpu_ms = totals.cpu_used / n * 1e3;
 }
 
-Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double seconds,
+Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, const FrameBenchOptions& bench,
             const std::filesystem::path& dir) {
   live::LiveOptions options;
   options.trainee = "bench";
@@ -155,9 +156,11 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
   ui::TraineeWindow window(std::move(exercise), QString("Table 1, %1 bodies").arg(spec.bodies));
   window.set_frame_interval(-1);  // this driver draws the frames, uncapped
   if (zoomed) window.look_at_body(0);
+  // The overlay off as a trainee turns it off: its checkbox.
+  if (auto* box = window.findChild<QCheckBox*>("coverageOverlay"); box && !bench.overlay) box->setChecked(false);
   window.show();
   wait_until_shown(window);
-  const FrameTotals totals = drive_frames(window, spec, seconds);
+  const FrameTotals totals = drive_frames(window, spec, bench.seconds);
 
   Row row;
   row.bodies = spec.bodies;
@@ -182,9 +185,9 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, double s
 int run_frame_bench(const FrameBenchOptions& options) {
   const auto dir = std::filesystem::temp_directory_path() / fmt::format("palpa-bench-{}", ::getpid());
   std::filesystem::create_directories(dir);
-  std::printf("palpa --bench: trainee window at its default size, haptic loop at 1 kHz, scripted finger pressing into "
-              "the bodies, %.1f s per scene and mode\n",
-              options.seconds);
+  std::printf("palpa --bench: trainee window at its default size, coverage overlay %s, haptic loop at 1 kHz, scripted "
+              "finger pressing into the bodies, %.1f s per scene and mode\n",
+              options.overlay ? "on" : "off", options.seconds);
   std::printf("%6s %5s %5s %4s | %7s %8s %9s | %8s %8s %8s %7s %6s %7s | %8s %7s %7s\n", "bodies", "MAT", "dyn",
               "view", "fps", "fps p5", "p95 ms", "tess ms", "copy ms", "rend ms", "changed", "drawn", "cpu ms", "haptic",
               "missed", "ticks");
@@ -198,7 +201,7 @@ int run_frame_bench(const FrameBenchOptions& options) {
     for (const bool zoomed : {false, true}) {
       if (zoomed && !largest) continue;
       for (const bool dynamics : {true, false}) {
-        const Row r = measure(spec, dynamics, zoomed, options.seconds, dir);
+        const Row r = measure(spec, dynamics, zoomed, options, dir);
         std::printf("%6d %5d %5s %4s | %7.1f %8.1f %9.2f | %8.2f %8.2f %8.2f %7.2f %6.1f %7.1f | %6.0f Hz %7llu %7llu\n",
                     r.bodies, r.mat_points, r.dynamics ? "on" : "off", r.zoomed ? "one" : "all", r.fps_mean, r.fps_p5,
                     r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed, r.bodies_drawn,
@@ -216,12 +219,12 @@ int run_frame_bench(const FrameBenchOptions& options) {
   if (options.csv) {
     std::ofstream out(*options.csv);
     out << "bodies,mat_points,dynamics,view,frames,fps_mean,fps_p5,frame_p95_ms,tessellate_ms,upload_ms,render_ms,"
-           "bodies_changed_per_frame,bodies_drawn_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks\n";
+           "bodies_changed_per_frame,bodies_drawn_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks,overlay\n";
     for (const auto& r : rows) {
-      out << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.1f},{},{}",
+      out << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.1f},{},{},{}",
                          r.bodies, r.mat_points, r.dynamics ? 1 : 0, r.zoomed ? "one" : "all", r.frames, r.fps_mean,
                          r.fps_p5, r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed,
-                         r.bodies_drawn, r.cpu_ms, r.haptic_hz, r.missed, r.ticks)
+                         r.bodies_drawn, r.cpu_ms, r.haptic_hz, r.missed, r.ticks, options.overlay ? 1 : 0)
           << "\n";
     }
     if (!out) {

@@ -12,6 +12,7 @@ struct FrameBenchOptions {
   double seconds = 3.0;                      ///< measured per scene and mode
   int max_bodies = 0;                        ///< only scenes with at most this many bodies (0: all)
   std::optional<std::filesystem::path> csv;  ///< also write the rows here
+  bool overlay = true;                       ///< the coverage overlay drawn (as a trainee starts)
 };
 
 /// Prints the table (stdout) and writes the CSV; returns the process exit code.

@@ -182,6 +182,8 @@ void add_options(CLI::App& cli, GuiOptions& o) {
   cli.add_option("--seconds", o.bench_options.seconds, "with --bench: seconds measured per scene and mode (default 3)")
       ->check(palpa::options::finite_positive(3600.0, "s"));
   cli.add_option("--csv", o.bench_csv, "with --bench: also write the rows to this CSV file");
+  cli.add_flag("--no-overlay", [&o](std::int64_t) { o.bench_options.overlay = false; },
+               "with --bench: the coverage overlay off (as its checkbox turns it off), to measure its cost");
   cli.add_option("--max-bodies", o.bench_options.max_bodies,
                  "with --bench: only the scenes with at most this many bodies (default: all)")
       ->check(palpa::options::integer_in(1, 1000));
@@ -285,8 +287,9 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
   if (o.bench) return run_bench(argc, argv, o);
-  if (!o.bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0) {
-    print_error("--seconds, --csv and --max-bodies go with --bench (see palpa --help)");
+  if (!o.bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0 ||
+      cli.count("--no-overlay") > 0) {
+    print_error("--seconds, --csv, --max-bodies and --no-overlay go with --bench (see palpa --help)");
     return kBadInput;
   }
   if (o.trainee.empty()) {

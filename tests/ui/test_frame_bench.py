@@ -55,9 +55,24 @@ class FrameBench(unittest.TestCase):
         self.assertEqual(sum(1 for line in res.stdout.splitlines() if line.strip().startswith("1 ")), 4, res.stdout)
 
     def test_bench_options_without_bench_are_refused(self):
-        res = subprocess.run([GUI, "--seconds", "1"], capture_output=True, text=True, timeout=60)
-        self.assertEqual(res.returncode, 2)
-        self.assertIn("--bench", res.stderr)
+        for option in (["--seconds", "1"], ["--no-overlay"]):
+            res = subprocess.run([GUI] + option, capture_output=True, text=True, timeout=60)
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("--bench", res.stderr)
+
+    def test_the_overlay_can_be_left_out_and_the_rows_say_so(self):
+        with tempfile.TemporaryDirectory(prefix="palpa_framebench_") as d:
+            rows = {}
+            for flag in ([], ["--no-overlay"]):
+                out = os.path.join(d, "frames.csv")
+                res = bench(["--seconds", "0.3", "--max-bodies", "1", "--csv", out] + flag)
+                self.assertEqual(res.returncode, 0, res.stderr)
+                self.assertIn("coverage overlay " + ("off" if flag else "on"), res.stdout)
+                with open(out, newline="") as f:
+                    rows[bool(flag)] = list(csv.DictReader(f))
+        self.assertEqual({r["overlay"] for r in rows[False]}, {"1"})
+        self.assertEqual({r["overlay"] for r in rows[True]}, {"0"})
+        self.assertTrue(all(int(r["frames"]) > 0 for r in rows[True]))
 
 
 if __name__ == "__main__":
