@@ -21,9 +21,11 @@ if(PALPA_SANITIZE)
                        "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
 
-# The mouse's perceptual channel: the push-back trace and the finger that sticks on a lump.
+# What the trainee sees besides the body: the push-back trace and the finger that sticks on
+# a lump, and the coverage overlay's dots thinned for the view.
 add_executable(ui_feel_tests
   ui/push_back_feel_test.cpp
+  ui/coverage_overlay_test.cpp
 )
 set_target_properties(ui_feel_tests PROPERTIES AUTOMOC ON)
 target_link_libraries(ui_feel_tests PRIVATE palpa_ui Qt5::Test)

@@ -115,11 +115,14 @@ class PushBackFeelTest : public QObject {
   }
 };
 
+int run_coverage_overlay_tests(int argc, char** argv);  // coverage_overlay_test.cpp
+
 int main(int argc, char** argv) {
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   PushBackFeelTest test;
-  return QTest::qExec(&test, argc, argv);
+  const int feel = QTest::qExec(&test, argc, argv);
+  return feel | run_coverage_overlay_tests(argc, argv);
 }
 
 #include "push_back_feel_test.moc"

@@ -1,10 +1,12 @@
 #include "palpa/ui/coverage_overlay.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
 #include <vtkActor.h>
+#include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -93,12 +95,13 @@ CoverageOverlay::CoverageOverlay(const live::LiveCoverage& coverage, vtkRenderer
       cells_.emplace_back(b, k);
     }
   }
-  vtkNew<vtkPolyData> dots;
-  dots->SetPoints(points);
-  dots->SetVerts(verts);
-  dots->GetPointData()->SetScalars(colours_);
+  dots_ = vtkSmartPointer<vtkPolyData>::New();
+  dots_->SetPoints(points);
+  dots_->SetVerts(verts);
+  dots_->GetPointData()->SetScalars(colours_);
+  stride_.assign(coverage.bodies(), 1);
   vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(dots);
+  mapper->SetInputData(dots_);
   mapper->SetColorModeToDirectScalars();
   actor_ = vtkSmartPointer<vtkActor>::New();
   actor_->SetMapper(mapper);
@@ -111,15 +114,106 @@ CoverageOverlay::CoverageOverlay(const live::LiveCoverage& coverage, vtkRenderer
 
 CoverageOverlay::~CoverageOverlay() { renderer_->RemoveActor(actor_); }
 
+std::uint8_t CoverageOverlay::block_level(std::size_t body, std::size_t cell) const {
+  const int s = stride_[body], cols = coverage_.cols(body), rows = coverage_.rows(body);
+  const auto& levels = coverage_.levels(body);
+  const auto& area = coverage_.areas(body);
+  const int i0 = static_cast<int>(cell) / cols, j0 = static_cast<int>(cell) % cols;
+  std::uint8_t least = 3;
+  for (int i = i0; i < std::min(rows, i0 + s); ++i)
+    for (int j = j0; j < std::min(cols, j0 + s); ++j) {
+      const auto k = static_cast<std::size_t>(i * cols + j);
+      if (area[k] > 0.0) least = std::min(least, levels[k]);
+    }
+  return least;
+}
+
 bool CoverageOverlay::sync() {
   if (coverage_.version() == drawn_version_) return false;
   drawn_version_ = coverage_.version();
   for (std::size_t d = 0; d < cells_.size(); ++d) {
-    const auto level = std::min<std::uint8_t>(coverage_.levels(cells_[d].first)[cells_[d].second], 3);
+    const auto [body, cell] = cells_[d];
+    const auto level = stride_[body] > 1 ? block_level(body, cell) : std::min<std::uint8_t>(coverage_.levels(body)[cell], 3);
     colours_->SetTypedTuple(static_cast<vtkIdType>(d), kColours[level].data());
   }
   colours_->Modified();
   return true;
+}
+
+namespace {
+// px on screen between two scene points (m).
+double pixels_between(vtkRenderer& r, const Vec3& a, const Vec3& b) {
+  double da[3], db[3];
+  r.SetWorldPoint(a.x(), a.y(), a.z(), 1.0);
+  r.WorldToDisplay();
+  r.GetDisplayPoint(da);
+  r.SetWorldPoint(b.x(), b.y(), b.z(), 1.0);
+  r.WorldToDisplay();
+  r.GetDisplayPoint(db);
+  return std::hypot(da[0] - db[0], da[1] - db[1]);
+}
+}  // namespace
+
+bool CoverageOverlay::fit_to_view() {
+  auto* camera = renderer_->GetActiveCamera();
+  if (!camera || renderer_->GetSize()[0] <= 0) return false;
+  // Where the camera is and looks, and the view's size: not its modification time, which
+  // every render's clipping-range reset bumps.
+  std::array<double, 12> view{};
+  camera->GetPosition(view.data());
+  camera->GetFocalPoint(view.data() + 3);
+  camera->GetViewUp(view.data() + 6);
+  view[9] = camera->GetViewAngle() + camera->GetParallelScale();
+  view[10] = renderer_->GetSize()[0];
+  view[11] = renderer_->GetSize()[1];
+  if (view == camera_view_) return false;
+  camera_view_ = view;
+  auto strides = stride_;
+  for (std::size_t b = 0; b < coverage_.bodies(); ++b) {
+    const int rows = coverage_.rows(b), cols = coverage_.cols(b);
+    if (rows < 2 || cols < 2) continue;
+    const auto& c = coverage_.centers(b);
+    const auto at = [&](int i, int j) { return c[static_cast<std::size_t>(i * cols + j)]; };
+    // The grid's spacing on screen: the median over a 5 x 5 sample of its cells of the closer
+    // of their two directions (slopes seen at a slant lie closer).
+    std::vector<double> spacings;
+    for (int a = 1; a <= 5; ++a)
+      for (int e = 1; e <= 5; ++e) {
+        const int i = std::max(1, a * rows / 6), j = std::max(1, e * cols / 6);
+        spacings.push_back(std::min(pixels_between(*renderer_, at(i - 1, j), at(i, j)), pixels_between(*renderer_, at(i, j - 1), at(i, j))));
+      }
+    std::nth_element(spacings.begin(), spacings.begin() + 12, spacings.end());
+    const double spacing = spacings[12];
+    strides[b] = spacing > 0.0 ? std::clamp(static_cast<int>(std::ceil(kMinSpacing / spacing)), 1, 16) : 1;
+  }
+  if (strides == stride_) return false;
+  stride_ = strides;
+  vtkNew<vtkCellArray> verts;
+  for (std::size_t d = 0; d < cells_.size(); ++d) {
+    const auto [body, cell] = cells_[d];
+    const int cols = coverage_.cols(body), s = stride_[body];
+    if ((static_cast<int>(cell) / cols) % s != 0 || (static_cast<int>(cell) % cols) % s != 0) continue;
+    verts->InsertNextCell(1);
+    verts->InsertCellPoint(static_cast<vtkIdType>(d));
+  }
+  dots_->SetVerts(verts);
+  drawn_version_ = ~std::uint64_t{0};  // the blocks' colours anew
+  sync();
+  return true;
+}
+
+std::vector<Vec3> CoverageOverlay::shown_dots() const {
+  std::vector<Vec3> out;
+  auto* verts = dots_->GetVerts();
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  verts->InitTraversal();
+  while (verts->GetNextCell(n, ids)) {
+    double p[3];
+    dots_->GetPoint(ids[0], p);
+    out.emplace_back(p[0], p[1], p[2]);
+  }
+  return out;
 }
 
 void CoverageOverlay::set_visible(bool visible) { actor_->SetVisibility(visible); }

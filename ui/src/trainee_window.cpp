@@ -526,6 +526,7 @@ void TraineeWindow::frame() {
   // An unchanged scene is not drawn again (under a software renderer a frame costs a core),
   // except a few times a second in case something changed that nothing reported.
   if (last_frame_.bodies_changed > 0) request_render();
+  if (overlay_->fit_to_view()) request_render();  // the camera moved: the dots thinned for it
   if (!skip_unchanged_ || render_requested_ || !since_render_.isValid() || since_render_.elapsed() >= kIdleRedrawMs) {
     if (!skip_unchanged_ || render_requested_) ++changed_frames_;
     render_window_->Render();

@@ -13,6 +13,7 @@
 #include "palpa/live/live_coverage.hpp"
 
 class vtkActor;
+class vtkPolyData;
 class vtkRenderer;
 class vtkUnsignedCharArray;
 
@@ -29,6 +30,15 @@ class CoverageOverlay {
 
   /// Colours the dots by the levels now; true when anything changed (a frame is needed).
   bool sync();
+  /// Thins the dots for the camera now, when it moved: per body every s-th row and column
+  /// of the grid, s the least that keeps the dots shown kMinSpacing pixels apart on screen;
+  /// a dot shown stands for its s x s block and takes its least level (a gap stays orange).
+  /// True when the dots shown changed. (Under a software renderer drawing 70 000 dots of 35
+  /// bodies cost more than the bodies.)
+  bool fit_to_view();
+  static constexpr double kMinSpacing = 4.0;  ///< px between dots shown (they are 3 px wide)
+  /// Where the dots shown are (m).
+  std::vector<Vec3> shown_dots() const;
   void set_visible(bool visible);
   bool visible() const;
 
@@ -47,6 +57,10 @@ class CoverageOverlay {
   vtkSmartPointer<vtkUnsignedCharArray> colours_;
   std::vector<std::pair<std::size_t, std::size_t>> cells_;  ///< (body, cell) of each dot
   std::uint64_t drawn_version_ = ~std::uint64_t{0};
+  vtkSmartPointer<vtkPolyData> dots_;
+  std::vector<int> stride_;  ///< per body: every stride-th row and column shown
+  std::array<double, 12> camera_view_{};  ///< the camera and view size the dots were thinned for
+  std::uint8_t block_level(std::size_t body, std::size_t cell) const;
 };
 
 /// The skin normal of every cell of one body's grid (unit, from its neighbours' centres),
