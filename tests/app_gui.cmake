@@ -13,10 +13,7 @@ target_compile_definitions(ui_app_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOUR
 vtk_module_autoinit(TARGETS ui_app_tests MODULES ${VTK_LIBRARIES})
 palpa_warnings(ui_app_tests)
 add_test(NAME ui.app COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_app_tests>)
-if(PALPA_SANITIZE)
-  set_tests_properties(ui.app PROPERTIES ENVIRONMENT
-                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
-endif()
+palpa_gui_sanitizer_env(ui.app)
 
 # SIGTERM / SIGINT mid-exercise: the window closes normally and the session is finished.
 add_test(NAME ui.signal COMMAND ${PALPA_XVFB_RUN} -a ${PALPA_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/ui/test_gui_signal.py

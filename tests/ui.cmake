@@ -1,55 +1,44 @@
 # Tests of the application window (QtTest), run under Xvfb with Mesa's software OpenGL
 # (included by tests/CMakeLists.txt when PALPA_BUILD_GUI is on).
 find_program(PALPA_XVFB_RUN xvfb-run REQUIRED)
-add_executable(ui_tests
-  ui/trainee_window_test.cpp
-)
-set_target_properties(ui_tests PROPERTIES AUTOMOC ON)
-target_link_libraries(ui_tests PRIVATE palpa_ui Qt5::Test)
-target_compile_definitions(ui_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-                                            PALPA_GUI_EXE="$<TARGET_FILE:palpa>")
-vtk_module_autoinit(TARGETS ui_tests MODULES ${VTK_LIBRARIES})
-palpa_warnings(ui_tests)
+
+# A QtTest executable over palpa_ui: moc, Qt Test, the source tree's path, VTK's modules.
+function(palpa_qt_test target)
+  add_executable(${target} ${ARGN})
+  set_target_properties(${target} PROPERTIES AUTOMOC ON)
+  target_link_libraries(${target} PRIVATE palpa_ui Qt5::Test)
+  target_compile_definitions(${target} PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  vtk_module_autoinit(TARGETS ${target} MODULES ${VTK_LIBRARIES})
+  palpa_warnings(${target})
+endfunction()
+
+# Under the dev preset the GUI runs with AddressSanitizer and UBSan, but without
+# LeakSanitizer: D-Bus (Qt's platform integration) and a library Mesa unloads leave a few
+# small blocks at exit (1144 bytes in 3 allocations, none from Palpa), and the indirect ones
+# come from an unloaded module that no suppression can name.
+function(palpa_gui_sanitizer_env)
+  if(PALPA_SANITIZE)
+    set_tests_properties(${ARGN} PROPERTIES ENVIRONMENT
+                         "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
+  endif()
+endfunction()
+
+palpa_qt_test(ui_tests ui/trainee_window_test.cpp)
+target_compile_definitions(ui_tests PRIVATE PALPA_GUI_EXE="$<TARGET_FILE:palpa>")
 add_dependencies(ui_tests palpa)  # the command-line and screenshot tests run the application
 add_test(NAME ui.trainee COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_tests>)
-if(PALPA_SANITIZE)
-  # Under the dev preset the GUI runs with AddressSanitizer and UBSan, but without
-  # LeakSanitizer: D-Bus (Qt's platform integration) and a library Mesa unloads leave a
-  # few small blocks at exit (1144 bytes in 3 allocations, none from Palpa), and the
-  # indirect ones come from an unloaded module that no suppression can name.
-  set_tests_properties(ui.trainee PROPERTIES ENVIRONMENT
-                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
-endif()
+palpa_gui_sanitizer_env(ui.trainee)
 
 # What the trainee sees besides the body: the push-back trace and the finger that sticks on
 # a lump, and the coverage overlay's dots thinned for the view.
-add_executable(ui_feel_tests
-  ui/push_back_feel_test.cpp
-  ui/coverage_overlay_test.cpp
-)
-set_target_properties(ui_feel_tests PROPERTIES AUTOMOC ON)
-target_link_libraries(ui_feel_tests PRIVATE palpa_ui Qt5::Test)
-target_compile_definitions(ui_feel_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-vtk_module_autoinit(TARGETS ui_feel_tests MODULES ${VTK_LIBRARIES})
-palpa_warnings(ui_feel_tests)
+palpa_qt_test(ui_feel_tests ui/push_back_feel_test.cpp ui/coverage_overlay_test.cpp)
 add_test(NAME ui.feel COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_feel_tests>)
-if(PALPA_SANITIZE)
-  set_tests_properties(ui.feel PROPERTIES ENVIRONMENT
-                       "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
-endif()
+palpa_gui_sanitizer_env(ui.feel)
 
 # Acceptance: palpation through the window's own input events, checked against fresh
 # presses, and a mouse trainee that must pass the default case (long form: PALPA_LONG_TESTS=1).
-add_executable(ui_acceptance_tests
-  ui/palpation_acceptance_test.cpp
-  ui/person_trainee.cpp
-  ui/person_trainee.hpp
-)
-set_target_properties(ui_acceptance_tests PROPERTIES AUTOMOC ON)
-target_link_libraries(ui_acceptance_tests PRIVATE palpa_ui Qt5::Test)
-target_compile_definitions(ui_acceptance_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-vtk_module_autoinit(TARGETS ui_acceptance_tests MODULES ${VTK_LIBRARIES})
-palpa_warnings(ui_acceptance_tests)
+palpa_qt_test(ui_acceptance_tests ui/palpation_acceptance_test.cpp ui/person_trainee.cpp ui/person_trainee.hpp
+              ui/acceptance_cases.hpp)
 if(PALPA_SANITIZE)
   # Under the sanitizers the window draws several times slower than a person moves: the
   # window's keys, force mode, gauge and close question run there; the slides and the mouse
