@@ -318,7 +318,7 @@ void PersonTrainee::fill_overlay_gaps() {
   }
 }
 
-score::Score PersonTrainee::exam(const std::vector<int>& levels, bool look_again) {
+score::Score PersonTrainee::exam(const std::vector<int>& levels) {
   int top = 0, bottom = 0;
   const auto columns = strip_columns(top, bottom);
   const int light = live::PressureDial::middle_of(live::PressureLevel::Light);
@@ -337,7 +337,7 @@ score::Score PersonTrainee::exam(const std::vector<int>& levels, bool look_again
   if (deep) fill_overlay_gaps();
   std::vector<std::pair<double, QPoint>> marks;
   set_level(levels.back());  // the second look at the pass's deepest setting, where a lump stands out most
-  for (int k = 0; look_again && k < std::min<int>(kSecondLooks, static_cast<int>(spots_.size())); ++k) {
+  for (int k = 0; k < std::min<int>(kSecondLooks, static_cast<int>(spots_.size())); ++k) {
     double height = 0.0;
     const auto& spot = spots_[static_cast<std::size_t>(k)];
     const auto m = second_look(spot.px, height);

@@ -46,9 +46,9 @@ class PersonTrainee {
 
   PersonTrainee(ui::TraineeWindow& w, std::uint64_t seed);
   /// The guide's exam: strips at each of `levels` (dial settings), the overlay's gaps at the
-  /// last one when it is deep, the second look at its spots (only when `look_again`), the
+  /// last one when it is deep, the second look at its spots, the
   /// marks, Finish. Returns the score.
-  score::Score exam(const std::vector<int>& levels, bool look_again = true);
+  score::Score exam(const std::vector<int>& levels);
 
   struct Spot {
     QPoint px;            // where the fingertip was drawn at the strongest bump seen there
@@ -94,7 +94,7 @@ class PersonTrainee {
   std::vector<Spot> spots_;
   double next_glance_ = 0.0;
   double seen_until_ = -1.0;  // the trace up to here was judged
-  std::deque<live::TracePoint> last_trace_;  // the last stroke's trace (for the log)
+  std::deque<live::TracePoint> last_trace_;  // the stroke's trace as last seen (judged at its end)
 };
 
 }  // namespace palpa::test

@@ -33,16 +33,13 @@ QSize PushBackTrace::minimumSizeHint() const {
 void PushBackTrace::feed(double t, const Vec3& finger, double firmness, double setting) {
   const std::size_t before = trace_.points().size();
   trace_.feed(t, finger, firmness, setting);
-  if (!trace_.points().empty() || before > 0 || !cleared_) {
-    cleared_ = trace_.points().empty();
-    fit_range();
-    update();
-  }
+  if (trace_.points().empty() && before == 0) return;  // nothing shown, nothing to show
+  fit_range();
+  update();
 }
 
 void PushBackTrace::clear() {
   trace_.feed(0.0, Vec3::Zero(), 0.0, 0.0);
-  cleared_ = true;
   update();
 }
 

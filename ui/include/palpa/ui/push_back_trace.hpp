@@ -37,7 +37,6 @@ class PushBackTrace : public QWidget {
   void fit_range();
   live::StrokeTrace trace_;
   double low_ = 0.0, high_ = 1.0;  // kPa
-  bool cleared_ = true;
 };
 
 }  // namespace palpa::ui
