@@ -8,6 +8,7 @@ add_executable(live_tests
   core/live/force_mode_load_test.cpp
   core/live/firmness_test.cpp
   core/live/stroke_trace_test.cpp
+  core/live/felt_path_test.cpp
 )
 target_link_libraries(live_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(live_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

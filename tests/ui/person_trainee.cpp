@@ -189,8 +189,7 @@ std::optional<PersonTrainee::Bump> PersonTrainee::judge(const std::deque<live::T
   seen_until_ = judged;
   if (!best) return std::nullopt;
   const auto& top = points[best->second];
-  const QPoint px = w_.to_view(top.at);
-  return Bump{px, skin_under(px).value_or(top.at), perceive(best->first), best->first};
+  return Bump{w_.to_view(top.skin), top.skin, perceive(best->first), best->first};
 }
 
 void PersonTrainee::remember(const QPoint& px, double perceived) {
@@ -252,8 +251,7 @@ std::optional<PersonTrainee::Bump> PersonTrainee::stroke_across(const QPoint& at
     for (const auto& p : last_trace_) {
       if (p.along - last < 0.003) continue;
       last = p.along;
-      const auto sk = skin_under(w_.to_view(p.at));
-      row += QString(" %1:%2(%3)").arg(std::lround(1e3 * p.along)).arg(p.firmness * 1e-3, 0, 'f', 2).arg(sk ? std::lround(1e3 * (*sk - spot).norm()) : -1);
+      row += QString(" %1:%2(%3)").arg(std::lround(1e3 * p.along)).arg(p.firmness * 1e-3, 0, 'f', 2).arg(std::lround(1e3 * (p.skin - spot).norm()));
     }
     qInfo("      trace (mm along: kPa (mm from the spot)):%s", qPrintable(row));
   }

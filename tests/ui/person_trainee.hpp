@@ -3,8 +3,12 @@
 // it works the trainee window only through input events (mouse moves over the view's
 // pixels, wheel notches, keys, the Finish button) and reads only what the window shows:
 // where the body is on screen (the window's own picking under a pixel, as the eye sees the
-// body), the task's words, the push-back trace as drawn and its words, and the fingertip
-// where it is drawn. It does not know where the tumours are.
+// body), the task's words, the push-back trace as drawn and its words, the fingertip and the
+// contact ring where they are drawn. It does not know where the tumours are. It remembers a bump by where the
+// window's contact ring was when the bump topped (the place on the skin the finger went
+// in), not by where the pressed fingertip was drawn: pressed deep into a curved body seen
+// at a slant, the fingertip is drawn up to ~10 mm of skin away from that place, and going
+// back to where it was drawn would press a different column of tissue.
 //
 // Its limits: each reading of a bump's height over the trace's baseline, or of a kPa
 // figure, carries multiplicative noise of sd kReadingNoise (a 10 % Weber fraction: two
@@ -51,7 +55,7 @@ class PersonTrainee {
   score::Score exam(const std::vector<int>& levels);
 
   struct Spot {
-    QPoint px;            // where the fingertip was drawn at the strongest bump seen there
+    QPoint px;            // where the contact ring was drawn at the strongest bump seen there
     double salience = 0;  // the sum of the bumps seen there, each perceived height over 1
     int seen = 0;
     double best = 0;      // the strongest bump seen there (perceived)
@@ -70,8 +74,8 @@ class PersonTrainee {
   // The exam's parts.
   std::vector<int> strip_columns(int& top, int& bottom) const;
   struct Bump {
-    QPoint px;         // the fingertip as drawn at the bump's top
-    Vec3 at;           // the skin seen under that pixel (the finger itself is pressed in)
+    QPoint px;         // where the contact ring was drawn at the bump's top
+    Vec3 at;           // the skin the ring was on
     double perceived;  // its height over the baseline, as read
     double drawn;      // its height over the baseline as drawn (for the log)
   };

@@ -113,6 +113,38 @@ class PushBackFeelTest : public QObject {
     QCOMPARE(std::max(plain.lag_near, plain.lag_far), 0.0);
     QVERIFY(plain.bump_near >= 1.15);
   }
+
+  /// The contact ring is drawn on the skin where the finger went in: with the pointer at rest
+  /// over the body, around the pointer (the finger has caught up with it), as a grab of the
+  /// window shows, whatever the fingertip's depth.
+  void theContactRingIsDrawnWhereTheFingerWentIn() {
+    QTemporaryDir dir;
+    auto w = open_window(dir.filePath("ring.palpa"));
+    QVERIFY(QTest::qWaitForWindowExposed(w.get()));
+    const auto& t = w->exercise().placed_case().tumours.at(0);
+    const auto hit = w->exercise().pick(palpa::Vec3(t.center[0] + 0.02, t.center[1], 0.5), palpa::Vec3(0, 0, -1));
+    QVERIFY(hit);
+    const QPoint px = w->to_view(hit->point);
+    QWindow* view = w->view()->input();
+    QMouseEvent e(QEvent::MouseMove, px, view->mapToGlobal(px), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
+    QApplication::sendEvent(view, &e);
+    QTest::qWait(1500);  // down to the pressure, the finger caught up
+    QVERIFY(w->exercise().contact().body >= 0);
+    const QImage shot = palpa::ui::grab_window(*w).convertToFormat(QImage::Format_RGB32);
+    const QPoint centre = w->view()->mapTo(w.get(), px);
+    double sx = 0.0, sy = 0.0;
+    int n = 0;
+    for (int y = centre.y() - 40; y <= centre.y() + 40; ++y)
+      for (int x = centre.x() - 40; x <= centre.x() + 40; ++x) {
+        if (!shot.rect().contains(x, y)) continue;
+        const QColor c = shot.pixelColor(x, y);
+        if (c.red() > 230 && c.green() > 190 && c.green() < 240 && c.blue() < 100) sx += x, sy += y, ++n;
+      }
+    qInfo("contact ring: %d pixels, centred at (%.1f, %.1f) against the pointer at (%d, %d)", n, n ? sx / n : 0.0,
+          n ? sy / n : 0.0, centre.x(), centre.y());
+    QVERIFY2(n >= 12, "no contact ring drawn near the pointer");
+    QVERIFY(std::hypot(sx / n - centre.x(), sy / n - centre.y()) <= 4.0);
+  }
 };
 
 int run_coverage_overlay_tests(int argc, char** argv);  // coverage_overlay_test.cpp

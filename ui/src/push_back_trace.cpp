@@ -30,9 +30,9 @@ QSize PushBackTrace::minimumSizeHint() const {
   return {160, static_cast<int>(kPlotLeast) + 2 * fontMetrics().lineSpacing() + 8};
 }
 
-void PushBackTrace::feed(double t, const Vec3& finger, double firmness, double setting) {
+void PushBackTrace::feed(double t, const Vec3& finger, double firmness, double setting, const Vec3& skin) {
   const std::size_t before = trace_.points().size();
-  trace_.feed(t, finger, firmness, setting);
+  trace_.feed(t, finger, firmness, setting, skin);
   if (trace_.points().empty() && before == 0) return;  // nothing shown, nothing to show
   fit_range();
   update();

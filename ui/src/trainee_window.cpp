@@ -433,6 +433,7 @@ void TraineeWindow::reveal(const score::Score& score) {
     }
   }
   probe_->VisibilityOff();
+  if (ring_) ring_->VisibilityOff();
   render_window_->Render();
 }
 
@@ -513,7 +514,7 @@ void TraineeWindow::frame() {
       drawn_probe_ = c;
     }
     gauge_->set_contact(exercise_->contact());
-    feel(s);
+    feel();
     if (exercise_->device_switched() && device_banner_->isHidden()) {
       // The chosen device was unplugged (or failed): the force went to zero and the mouse
       // drives the probe now; the session goes on.

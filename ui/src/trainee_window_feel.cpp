@@ -3,6 +3,11 @@
 // push-back trace it feeds.
 #include <QCheckBox>
 #include <QCursor>
+#include <vtkActor.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRegularPolygonSource.h>
+#include <vtkRenderer.h>
 
 #include "palpa/live/press_control.hpp"
 #include "palpa/ui/push_back_trace.hpp"
@@ -15,7 +20,42 @@ namespace {
 Eigen::Vector2d to_eigen(const QPoint& p) { return {p.x(), p.y()}; }
 QPoint to_pixel(const Eigen::Vector2d& p) { return {static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y()))}; }
 constexpr double kLagToFollow = 0.5;  // px: a smaller lag is not worth a pick a frame
+constexpr double kContactRingRadius = 0.004;  // m: about a fingertip's contact patch
 }  // namespace
+
+// The contact ring: where the finger went into the skin (the rest top of its column). Pressed
+// deep into a curved body seen at a slant, the fingertip is drawn away from that place (up to
+// ~10 mm of skin on the imported breast); the ring shows the place a mark or a second stroke
+// comes back to, and, with the pointer hidden over a body, where the finger is aimed.
+void TraineeWindow::show_contact_ring(const live::FeltPoint& at) {
+  const bool on = at.thickness > 0.0;
+  if (!ring_) {
+    ring_source_ = vtkSmartPointer<vtkRegularPolygonSource>::New();
+    ring_source_->SetNumberOfSides(24);
+    ring_source_->SetRadius(kContactRingRadius);
+    ring_source_->GeneratePolygonOff();
+    auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+    mapper->SetInputConnection(ring_source_->GetOutputPort());
+    ring_ = vtkSmartPointer<vtkActor>::New();
+    ring_->SetMapper(mapper);
+    ring_->GetProperty()->SetColor(1.0, 0.85, 0.2);
+    ring_->GetProperty()->SetLineWidth(2.0);
+    ring_->GetProperty()->LightingOff();
+    ring_->VisibilityOff();
+    renderer_->AddActor(ring_);
+  }
+  if (!on) {
+    if (ring_->GetVisibility()) ring_->VisibilityOff(), request_render();
+    return;
+  }
+  if (ring_->GetVisibility() && (at.skin - drawn_ring_).norm() < 2e-4) return;  // not worth a redraw
+  const Vec3 c = at.skin + 5e-4 * at.normal;  // just over the skin, not inside it
+  ring_source_->SetCenter(c.x(), c.y(), c.z());
+  ring_source_->SetNormal(at.normal.x(), at.normal.y(), at.normal.z());
+  ring_->VisibilityOn();
+  drawn_ring_ = at.skin;
+  request_render();
+}
 
 bool TraineeWindow::sticky_finger() const { return sticky_box_ && sticky_box_->isChecked(); }
 
@@ -51,13 +91,15 @@ void TraineeWindow::palpate_at(const QPoint& pos) {
   exercise_->aim(picked_);  // off the bodies: the finger lifts where it was
 }
 
-void TraineeWindow::feel(const engine::SceneSnapshot& snapshot) {
-  const auto& c = exercise_->contact();
-  // The thin rim ends a stroke: there the skin and the support make up most of the column
-  // and every stroke would end in a rise (the gauge says "thin tissue").
-  const bool tissue = c.body >= 0 && c.thickness >= live::kThinTissue;
-  trace_->feed(snapshot.t, Vec3(snapshot.probe[0], snapshot.probe[1], snapshot.probe[2]), tissue ? c.firmness : 0.0,
-               pressure_setting());
+void TraineeWindow::feel() {
+  // Everything the finger slid over since the last frame, not only where it is now: the
+  // trace's bumps stay where the lumps are at any frame rate (live/felt_path.hpp). The thin
+  // rim ends a stroke: there the skin and the support make up most of the column and every
+  // stroke would end in a rise (the gauge says "thin tissue").
+  const auto& felt = exercise_->felt();
+  for (const auto& p : felt)
+    trace_->feed(p.t, p.finger, p.thickness >= live::kThinTissue ? p.firmness : 0.0, pressure_setting(), p.skin);
+  if (!felt.empty()) show_contact_ring(felt.back());
   if (pointer_ && control_display_.lag() > kLagToFollow) palpate_at(*pointer_);
 }
 

@@ -65,6 +65,7 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       picker_(*scene_),
       follower_(*scene_, follower_options(options, thresholds_)),
       stiffness_state_(scene_->make_state()),
+      felt_state_(scene_->make_state()),
       deepest_share_(deepest_plain_share(*scene_, thresholds_, follower_options(options, thresholds_).probe,
                                          force_bound(thresholds_))) {
   if (options_.trainee.empty()) throw std::invalid_argument("trainee id must not be empty");
@@ -143,8 +144,13 @@ bool LiveExercise::update() {
   const bool fresh = loop_->update_snapshot();
   if (fresh) last_fresh_ = std::chrono::steady_clock::now();
   follow();
+  felt_.clear();
   if (!fresh) return false;
-  meshes_.update(loop_->snapshot());
+  const auto& s = loop_->snapshot();
+  const ContactEnd now{s.t, Vec3(s.probe[0], s.probe[1], s.probe[2]), s.body, s.u, s.v, s.depth};
+  felt_between(*scene_, felt_state_, options_.engine.probe, felt_from_, now, felt_);
+  felt_from_ = now;
+  meshes_.update(s);
   return true;
 }
 

@@ -5,4 +5,5 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/live_exercise.cpp
   ${CMAKE_CURRENT_LIST_DIR}/press_control.cpp
   ${CMAKE_CURRENT_LIST_DIR}/stroke_trace.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/felt_path.cpp
 )

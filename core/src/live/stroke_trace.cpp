@@ -19,7 +19,7 @@ void StrokeTrace::restart() {
   ++stroke_;
 }
 
-void StrokeTrace::feed(double t, const Vec3& finger, double firmness, double setting) {
+void StrokeTrace::feed(double t, const Vec3& finger, double firmness, double setting, const Vec3& skin) {
   if (!(firmness > 0.0) || !std::isfinite(firmness) || !finger.allFinite()) {
     on_ = false;
     points_.clear();
@@ -33,7 +33,7 @@ void StrokeTrace::feed(double t, const Vec3& finger, double firmness, double set
   setting_ = setting;
   if (spots_.empty() || along_ - spots_.back().along >= kSpotSpacing) spots_.push_back({along_, firmness});
   while (along_ - spots_.front().along > kBaselineSpan) spots_.pop_front();
-  points_.push_back({t, along_, firmness, baseline(), finger});
+  points_.push_back({t, along_, firmness, baseline(), finger, skin});
   while (points_.size() > kMaxPoints || t - points_.front().t > kMemory) points_.pop_front();
 }
 

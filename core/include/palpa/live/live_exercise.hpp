@@ -25,6 +25,7 @@
 #include "palpa/session/session_recorder.hpp"
 #include "palpa/session/session_writer.hpp"
 #include "palpa/live/display_meshes.hpp"
+#include "palpa/live/felt_path.hpp"
 #include "palpa/live/press_control.hpp"
 #include "palpa/render/surface_pick.hpp"
 
@@ -142,6 +143,10 @@ class LiveExercise {
   }
   /// The contact of the last snapshot taken by update(), with the loop's state.
   ContactInfo contact() const;
+  /// The finger's path from the snapshot before the last update() that took one to that
+  /// one, felt every kFeltStep (felt_path.hpp); empty after an update() that took none.
+  /// What the push-back trace is fed, whatever the frame rate.
+  const std::vector<FeltPoint>& felt() const { return felt_; }
   /// s of haptic time a stall or fault is still reported after it ended, so that a 60 Hz
   /// GUI shows a 20 ms stall.
   static constexpr double kLoopStateHold = 0.25;
@@ -219,6 +224,9 @@ class LiveExercise {
   double frame_gap_ = 0.0;  // s between the last two follow() calls
   std::chrono::steady_clock::time_point last_fresh_{};  // when update() last got a snapshot
   mutable scene::ProbeState stiffness_state_;           // contact()'s fresh probes
+  scene::ProbeState felt_state_;                        // felt()'s fresh probes
+  std::vector<FeltPoint> felt_;
+  ContactEnd felt_from_;  // the snapshot felt() last ended at
   double deepest_share_ = PressureDial::kMaxShare;
   std::vector<LiveMark> marks_;
   std::int64_t next_mark_ = 1;

@@ -27,6 +27,9 @@ struct TracePoint {
   double firmness = 0.0;  ///< Pa
   double baseline = 0.0;  ///< Pa: the stroke's baseline when this point was taken
   Vec3 at = Vec3::Zero(); ///< the finger (m)
+  /// m: where the finger went into the skin (the rest top of its column, what the window's
+  /// contact ring shows); the finger itself when not given.
+  Vec3 skin = Vec3::Zero();
 };
 
 class StrokeTrace {
@@ -47,7 +50,9 @@ class StrokeTrace {
   /// body, or a body without a modulus) at pressure setting `setting` (any number naming
   /// the dial's step or the force target: a change starts a new stroke, since readings at
   /// two pressures are not comparable).
-  void feed(double t, const Vec3& finger, double firmness, double setting);
+  void feed(double t, const Vec3& finger, double firmness, double setting) { feed(t, finger, firmness, setting, finger); }
+  /// The same, with where the finger went into the skin (TracePoint::skin).
+  void feed(double t, const Vec3& finger, double firmness, double setting, const Vec3& skin);
   /// The stroke's points of the last kMemory seconds, oldest first.
   const std::deque<TracePoint>& points() const { return points_; }
   /// The newest point's firmness over its baseline; 1 when there is no stroke or it has not

@@ -14,8 +14,8 @@ class PushBackTrace : public QWidget {
   Q_OBJECT
  public:
   explicit PushBackTrace(QWidget* parent = nullptr);
-  /// One frame's reading (live::StrokeTrace::feed); redraws.
-  void feed(double t, const Vec3& finger, double firmness, double setting);
+  /// One reading (live::StrokeTrace::feed, `skin`: where the finger went into the skin); redraws.
+  void feed(double t, const Vec3& finger, double firmness, double setting, const Vec3& skin);
   /// Nothing to show (the exercise ended).
   void clear();
   const live::StrokeTrace& trace() const { return trace_; }

@@ -33,6 +33,7 @@ class QPushButton;
 class vtkActor;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
+class vtkRegularPolygonSource;
 
 namespace palpa::ui {
 
@@ -165,9 +166,10 @@ class TraineeWindow : public QMainWindow {
   void apply_pressure();
   /// The window's pick under a view pixel (the bodies' top contours), if any.
   std::optional<render::SurfacePick> pick_at(const QPoint& pos) const;
-  /// Each frame: the push-back trace reads the finger, and a finger left behind by the
-  /// control/display ratio catches up with a resting pointer.
-  void feel(const engine::SceneSnapshot& snapshot);
+  /// Each frame: the push-back trace reads what the finger slid over since the last one,
+  /// and a finger left behind by the control/display ratio catches up with a resting pointer.
+  void feel();
+  void show_contact_ring(const live::FeltPoint& at);
   /// The pressure setting as the trace compares it (the dial's step, or the force target).
   double pressure_setting() const { return force_target_ > 0.0 ? 100.0 + force_target_ : dial_.index(); }
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
@@ -198,6 +200,9 @@ class TraineeWindow : public QMainWindow {
   std::uint64_t fed_tick_ = 0;
   std::uint64_t shown_coverage_version_ = 0;
   vtkSmartPointer<vtkActor> probe_;
+  vtkSmartPointer<vtkActor> ring_;  // the contact ring (show_contact_ring)
+  vtkSmartPointer<vtkRegularPolygonSource> ring_source_;
+  palpa::Vec3 drawn_ring_ = palpa::Vec3::Zero();
   std::vector<std::pair<std::int64_t, vtkSmartPointer<vtkActor>>> mark_actors_;
   QTimer timer_;
   QElapsedTimer fps_clock_;
