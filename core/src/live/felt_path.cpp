@@ -38,7 +38,7 @@ void felt_between(const scene::Scene& scene, scene::ProbeState& state, const sce
     return;
   }
   const double travel = (to.finger - from.finger).norm();
-  const int n = std::clamp(static_cast<int>(std::ceil(travel / kFeltStep)), 1, kFeltMost);
+  const int n = static_cast<int>(std::clamp(std::ceil(travel / kFeltStep), 1.0, static_cast<double>(kFeltMost)));
   for (int k = 1; k <= n; ++k) {
     const double s = static_cast<double>(k) / n;
     ContactEnd at = to;
