@@ -56,6 +56,7 @@ class CoverageOverlay {
   vtkSmartPointer<vtkActor> actor_;
   vtkSmartPointer<vtkUnsignedCharArray> colours_;
   std::vector<std::pair<std::size_t, std::size_t>> cells_;  ///< (body, cell) of each dot
+  std::vector<std::size_t> shown_;  ///< the dots drawn (every stride-th row and column): sync() colours only these
   std::uint64_t drawn_version_ = ~std::uint64_t{0};
   vtkSmartPointer<vtkPolyData> dots_;
   std::vector<int> stride_;  ///< per body: every stride-th row and column shown
