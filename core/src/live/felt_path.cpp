@@ -40,6 +40,10 @@ void felt_between(const scene::Scene& scene, scene::ProbeState& state, const sce
   const double travel = (to.finger - from.finger).norm();
   const int n = static_cast<int>(std::clamp(std::ceil(travel / kFeltStep), 1.0, static_cast<double>(kFeltMost)));
   for (int k = 1; k <= n; ++k) {
+    if (k == n) {  // the snapshot itself, exactly as taken
+      out.push_back(feel_at(scene, state, options, to));
+      break;
+    }
     const double s = static_cast<double>(k) / n;
     ContactEnd at = to;
     at.t = from.t + s * (to.t - from.t);

@@ -64,7 +64,6 @@ LiveExercise::LiveExercise(const io::CaseFile& file, const std::string& case_sou
       meshes_(*scene_, options.engine.deform, options.tessellation),
       picker_(*scene_),
       follower_(*scene_, follower_options(options, thresholds_)),
-      stiffness_state_(scene_->make_state()),
       felt_state_(scene_->make_state()),
       deepest_share_(deepest_plain_share(*scene_, thresholds_, follower_options(options, thresholds_).probe,
                                          force_bound(thresholds_))) {
@@ -146,12 +145,17 @@ bool LiveExercise::update() {
   follow();
   felt_.clear();
   if (!fresh) return false;
+  feel_snapshot();
+  meshes_.update(loop_->snapshot());
+  return true;
+}
+
+void LiveExercise::feel_snapshot() {
   const auto& s = loop_->snapshot();
   const ContactEnd now{s.t, Vec3(s.probe[0], s.probe[1], s.probe[2]), s.body, s.u, s.v, s.depth};
   felt_between(*scene_, felt_state_, options_.engine.probe, felt_from_, now, felt_);
   felt_from_ = now;
-  meshes_.update(s);
-  return true;
+  felt_now_ = felt_.back();
 }
 
 LoopState LiveExercise::loop_state() const {
@@ -182,15 +186,11 @@ ContactInfo LiveExercise::contact() const {
   if (s.body < 0 || static_cast<std::size_t>(s.body) >= scene_->size() || !(s.depth > 0.0)) return c;
   c.body = s.body;
   c.depth = s.depth;
-  // The rest skeleton is never changed: evaluating it here, beside the haptic thread, is safe.
-  std::array<double, 4> sk{};
-  scene_->body(static_cast<std::size_t>(s.body)).body.skeleton().evaluate(s.u, s.v, sk, 4);
-  c.thickness = 2.0 * std::max(0.0, sk[3]);
+  c.thickness = felt_now_.thickness;  // read when the snapshot was taken (feel_snapshot)
   c.fraction = c.thickness > 0.0 ? c.depth / c.thickness : 1.0;
   c.level = level_of(c.fraction, thresholds_);
   c.stiffness = c.force / s.depth;
-  c.firmness = apparent_firmness(*scene_, stiffness_state_, options_.engine.probe, static_cast<std::size_t>(s.body), s.u,
-                                 s.v, s.depth);
+  c.firmness = felt_now_.firmness;
   return c;
 }
 
@@ -308,7 +308,7 @@ void LiveExercise::end(const std::string& note) {
   close_device_pause();
   finished_ = true;
   loop_->stop();
-  loop_->update_snapshot();
+  if (loop_->update_snapshot()) feel_snapshot();
   const double t_end = now();
   std::string end_note = note;
   if (!device_note_.empty()) {

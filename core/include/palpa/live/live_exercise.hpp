@@ -202,6 +202,7 @@ class LiveExercise {
   void follow();  ///< advances the surface follower and steers the virtual device
   void end(const std::string& note);  ///< stops the loop and records the End event
   void close_device_pause();
+  void feel_snapshot();  ///< felt_ from the last snapshot felt to the one just taken
 
   LiveOptions options_;
   std::string case_source_;
@@ -223,10 +224,10 @@ class LiveExercise {
   std::chrono::steady_clock::time_point last_follow_{};
   double frame_gap_ = 0.0;  // s between the last two follow() calls
   std::chrono::steady_clock::time_point last_fresh_{};  // when update() last got a snapshot
-  mutable scene::ProbeState stiffness_state_;           // contact()'s fresh probes
-  scene::ProbeState felt_state_;                        // felt()'s fresh probes
+  scene::ProbeState felt_state_;  // felt()'s fresh probes
   std::vector<FeltPoint> felt_;
   ContactEnd felt_from_;  // the snapshot felt() last ended at
+  FeltPoint felt_now_;    // what the finger felt at that snapshot: contact()'s thickness and firmness
   double deepest_share_ = PressureDial::kMaxShare;
   std::vector<LiveMark> marks_;
   std::int64_t next_mark_ = 1;
