@@ -231,7 +231,7 @@ class TraineeWindowTest : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QTest::qWait(100);
     auto* view = window.view();
-    vtkPoints* points = window.surfaces().top(0)->GetPoints();
+    vtkPoints* points = window.surfaces().tops()->GetPoints();  // one body: all its points
     std::vector<double> rest_z(static_cast<std::size_t>(points->GetNumberOfPoints()));
     for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k) rest_z[static_cast<std::size_t>(k)] = points->GetPoint(k)[2];
 
@@ -249,7 +249,7 @@ class TraineeWindowTest : public QObject {
     QVERIFY(window.exercise().meshes().version(0) > 0);
     // The drawn surface (the VTK points themselves) sank under the finger by at least 2 mm.
     QVERIFY(wait_for([&] {
-      vtkPoints* now = window.surfaces().top(0)->GetPoints();
+      vtkPoints* now = window.surfaces().tops()->GetPoints();
       double sink = 0.0;
       for (vtkIdType k = 0; k < now->GetNumberOfPoints() && static_cast<std::size_t>(k) < rest_z.size(); ++k)
         sink = std::max(sink, rest_z[static_cast<std::size_t>(k)] - now->GetPoint(k)[2]);
