@@ -12,7 +12,7 @@ function(palpa_qt_test target)
   palpa_warnings(${target})
 endfunction()
 
-# Under the dev preset the GUI runs with AddressSanitizer and UBSan, but without
+# Under the dev-gui preset the GUI runs with AddressSanitizer and UBSan, but without
 # LeakSanitizer: D-Bus (Qt's platform integration) and a library Mesa unloads leave a few
 # small blocks at exit (1144 bytes in 3 allocations, none from Palpa), and the indirect ones
 # come from an unloaded module that no suppression can name.
