@@ -7,4 +7,5 @@ add_executable(anatomy_tests
 target_link_libraries(anatomy_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(anatomy_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(anatomy_tests)
+palpa_test_pch(anatomy_tests)
 gtest_discover_tests(anatomy_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

@@ -9,4 +9,5 @@ add_executable(author_tests
 target_link_libraries(author_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(author_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(author_tests)
+palpa_test_pch(author_tests)
 gtest_discover_tests(author_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

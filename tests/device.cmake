@@ -11,6 +11,7 @@ add_executable(device_tests
 target_link_libraries(device_tests PRIVATE palpa_device palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(device_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(device_tests)
+palpa_test_pch(device_tests)
 gtest_discover_tests(device_tests TEST_PREFIX "device." DISCOVERY_TIMEOUT 60)
 
 # read()/write_force() in the haptic thread allocate nothing (counting operator new of its own).
@@ -19,6 +20,7 @@ add_executable(device_alloc_test
 )
 target_link_libraries(device_alloc_test PRIVATE palpa_device palpa_core GTest::gtest GTest::gtest_main)
 palpa_warnings(device_alloc_test)
+palpa_test_pch(device_alloc_test)
 gtest_discover_tests(device_alloc_test TEST_PREFIX "device." DISCOVERY_TIMEOUT 60)
 
 # Every USB id the drivers know has a udev rule.

@@ -13,4 +13,5 @@ add_executable(live_tests
 target_link_libraries(live_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(live_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(live_tests)
+palpa_test_pch(live_tests)
 gtest_discover_tests(live_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)

@@ -7,6 +7,7 @@ add_executable(data_paths_tests
 target_link_libraries(data_paths_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(data_paths_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(data_paths_tests)
+palpa_test_pch(data_paths_tests)
 gtest_discover_tests(data_paths_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 
 # The .deb (cpack into a temporary folder, unpacked into a scratch root, run from there) and

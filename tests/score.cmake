@@ -16,6 +16,7 @@ find_package(SQLite3 REQUIRED)  # score_stream_test edits copies of sessions (ev
 target_link_libraries(score_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)
 target_compile_definitions(score_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(score_tests)
+palpa_test_pch(score_tests)
 gtest_discover_tests(score_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 
 # Scoring throughput on a synthetic 5-minute 1 kHz session.

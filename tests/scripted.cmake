@@ -8,6 +8,7 @@ add_executable(scripted_tests
 target_link_libraries(scripted_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)
 target_compile_definitions(scripted_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(scripted_tests)
+palpa_test_pch(scripted_tests)
 gtest_discover_tests(scripted_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 
 # palpa-cli exercise end to end: styles, the session file, determinism, refusals.

@@ -15,6 +15,7 @@ add_executable(session_tests
 target_link_libraries(session_tests PRIVATE palpa_core SQLite::SQLite3 GTest::gtest GTest::gtest_main)
 target_compile_definitions(session_tests PRIVATE PALPA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 palpa_warnings(session_tests)
+palpa_test_pch(session_tests)
 gtest_discover_tests(session_tests TEST_PREFIX "core." DISCOVERY_TIMEOUT 60)
 
 if(PALPA_BUILD_BENCHMARKS)
