@@ -36,11 +36,8 @@ class BodySurfaces {
   void set_visible(std::size_t body, bool visible);
   /// 1: opaque; lower to see the tumours inside.
   void set_opacity(double opacity);
-  /// Every body's top contour (tests read its points): body b's vertices are
-  /// [first_vertex(b), first_vertex(b) + vertex_count(b)).
+  /// Every body's top contour, in body order (tests read its points).
   vtkPolyData* tops() const { return layers_[0].data; }
-  vtkIdType first_vertex(std::size_t body) const { return bodies_[body].first[0]; }
-  vtkIdType vertex_count(std::size_t body) const { return bodies_[body].count[0]; }
 
  private:
   struct Layer {  // all tops, or all bottoms
