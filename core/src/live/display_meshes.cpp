@@ -1,6 +1,7 @@
 #include "palpa/live/display_meshes.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace palpa::live {
 
@@ -10,10 +11,31 @@ DisplayMeshes::DisplayMeshes(const scene::Scene& scene, const deform::DeformOpti
   bodies_.reserve(scene.size());
   for (std::size_t b = 0; b < scene.size(); ++b) {
     auto net = deform::display_net(scene.body(b).body, deform);
-    bodies_.push_back(Body{std::move(net.top), std::move(net.bottom), {}, {}, 0, true, true});
-    render::tessellate(bodies_.back().top, options_, false, bodies_.back().top_mesh);
-    render::tessellate(bodies_.back().bottom, options_, true, bodies_.back().bottom_mesh);
+    bodies_.push_back(Body{std::move(net.top), std::move(net.bottom), {}, {}, options_, 0, true, true, false});
+    tessellate(bodies_.back());
   }
+}
+
+void DisplayMeshes::tessellate(Body& body) const {
+  render::tessellate(body.top, body.options, false, body.top_mesh);
+  render::tessellate(body.bottom, body.options, true, body.bottom_mesh);
+}
+
+double DisplayMeshes::deviation(std::size_t body) const {
+  const auto& b = bodies_[body];
+  return std::max(render::max_parametric_deviation(b.top_mesh, b.top), render::max_parametric_deviation(b.bottom_mesh, b.bottom));
+}
+
+void DisplayMeshes::set_tolerance(std::size_t body, double tolerance) {
+  auto& b = bodies_[body];
+  render::TessellationOptions o = options_;
+  if (tolerance > options_.tolerance && std::isfinite(tolerance)) {
+    o.tolerance = tolerance;
+    o.uniform_if_cheaper = true;
+  }
+  if (o == b.options) return;
+  b.options = o;
+  b.stale = true;
 }
 
 namespace {
@@ -38,16 +60,23 @@ std::size_t DisplayMeshes::update(const engine::SceneSnapshot& snapshot) {
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     auto& body = bodies_[b];
     body.changed = false;
-    if (!body.visible || b >= snapshot.bodies.size()) continue;
-    const auto& shot = snapshot.bodies[b];
-    // ~0 marks a snapshot slot never filled by the haptic thread (SceneSnapshot::sized_for).
-    if (shot.version == body.version || shot.version == ~std::uint64_t{0}) continue;
-    if (shot.top.size() != body.top.control().size() || shot.bottom.size() != body.bottom.control().size()) continue;
-    copy_control(shot.top, body.top);
-    copy_control(shot.bottom, body.bottom);
-    render::tessellate(body.top, options_, false, body.top_mesh);
-    render::tessellate(body.bottom, options_, true, body.bottom_mesh);
-    body.version = shot.version;
+    if (!body.visible) continue;
+    if (b < snapshot.bodies.size()) {
+      const auto& shot = snapshot.bodies[b];
+      // ~0 marks a snapshot slot never filled by the haptic thread (SceneSnapshot::sized_for).
+      const bool fresh = shot.version != body.version && shot.version != ~std::uint64_t{0} &&
+                         shot.top.size() == body.top.control().size() &&
+                         shot.bottom.size() == body.bottom.control().size();
+      if (fresh) {
+        copy_control(shot.top, body.top);
+        copy_control(shot.bottom, body.bottom);
+        body.version = shot.version;
+        body.stale = true;
+      }
+    }
+    if (!body.stale) continue;
+    tessellate(body);
+    body.stale = false;
     body.changed = true;
     ++changed;
   }

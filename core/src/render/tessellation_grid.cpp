@@ -179,6 +179,45 @@ void grid_lines(const std::vector<double>& knots, const std::vector<int>& seg, s
   lines.push_back(knots.back());
 }
 
+/// True when no interior knot has multiplicity >= degree: the surface is C1 across every
+/// knot in this direction, so a cell may straddle knots under one second-derivative bound.
+bool c1_across_knots(const std::vector<double>& knots, int degree) {
+  const std::size_t last = knots.size() - static_cast<std::size_t>(degree) - 1;
+  std::size_t run = 1;
+  for (std::size_t k = static_cast<std::size_t>(degree) + 1; k < last; ++k) {
+    run = knots[k] == knots[k - 1] ? run + 1 : 1;
+    if (run >= static_cast<std::size_t>(degree)) return false;
+  }
+  return true;
+}
+
+/// The fewest segments n per direction for which the uniform n x n grid meets the
+/// tolerance by the bounds b holding everywhere (the bound falls as 1/n^2); 0 when more
+/// than `limit` would be needed.
+int uniform_segments(const DerivativeBounds& b, double range_u, double range_v, double tolerance, int limit) {
+  const double k = range_u * range_u * b.suu + 2.0 * range_u * range_v * b.suv + range_v * range_v * b.svv;
+  const double n = std::ceil(std::sqrt(k / (8.0 * tolerance)));
+  if (!(n <= static_cast<double>(limit))) return 0;
+  int segments = std::max(1, static_cast<int>(n));
+  // Rounding: step up while the bound as grid_error_bound computes it is over.
+  while (segments < limit && grid_error_bound(b, range_u, range_v, segments, segments) > tolerance) ++segments;
+  return segments;
+}
+
+/// With o.uniform_if_cheaper: the segments per direction of the uniform grid within the
+/// tolerance when it has fewer cells than knot_cells (-1: no grid through the knots fits), else 0.
+int cheaper_uniform(const spline::BSplineSurface& s, const TessellationOptions& o, const GridScratch& g,
+                    const DerivativeBounds& global, long long knot_cells) {
+  if (!o.uniform_if_cheaper || !c1_across_knots(s.knots_u(), s.degree_u()) || !c1_across_knots(s.knots_v(), s.degree_v())) {
+    return 0;
+  }
+  const int fewest = uniform_segments(global, g.knots_u.back() - g.knots_u.front(), g.knots_v.back() - g.knots_v.front(),
+                                      o.tolerance, o.max_segments);
+  if (fewest == 0) return 0;
+  const int n = std::max(o.min_segments, fewest);
+  return knot_cells < 0 || static_cast<long long>(n) * n < knot_cells ? n : 0;
+}
+
 void uniform_lines(double a, double b, int n, std::vector<double>& lines) {
   lines.resize(idx(n + 1));
   for (int k = 0; k <= n; ++k) lines[idx(k)] = k == n ? b : a + (b - a) * k / n;
@@ -265,6 +304,11 @@ double choose_grid(const spline::BSplineSurface& s, const TessellationOptions& o
       const long long cells = plan_cells(g, o, budget, share, u_first);
       if (cells > 0 && (best_share < 0.0 || cells < best_cells)) best_share = share, best_u_first = u_first, best_cells = cells;
     }
+  }
+  if (const int n = cheaper_uniform(s, o, g, global, best_share < 0.0 ? -1 : best_cells); n > 0) {
+    uniform_lines(g.knots_u.front(), g.knots_u.back(), n, us);
+    uniform_lines(g.knots_v.front(), g.knots_v.back(), n, vs);
+    return grid_error_bound(global, g.knots_u.back() - g.knots_u.front(), g.knots_v.back() - g.knots_v.front(), n, n);
   }
   if (best_share < 0.0) {  // too fine for max_segments: the uniform grid at the limit
     uniform_lines(g.knots_u.front(), g.knots_u.back(), o.max_segments, us);

@@ -137,6 +137,13 @@ class LiveExercise {
   const DisplayMeshes& meshes() const { return meshes_; }
   /// Off-screen culling: update() skips bodies the view cannot see (DisplayMeshes::set_visible).
   void set_body_visible(std::size_t body, bool visible) { meshes_.set_visible(body, visible); }
+  /// Level of detail: the display tolerance (m) of the body's drawn contours
+  /// (DisplayMeshes::set_tolerance), applied at the next update() with a new snapshot or
+  /// refresh_meshes().
+  void set_body_tolerance(std::size_t body, double tolerance) { meshes_.set_tolerance(body, tolerance); }
+  /// Re-tessellates the bodies whose detail changed without waiting for a new snapshot
+  /// (the view moved while the exercise is not running); returns how many changed.
+  std::size_t refresh_meshes() { return meshes_.update(loop_->snapshot()); }
   /// Picks the rest top contour under a pointer ray (see surface_pick.hpp).
   std::optional<render::SurfacePick> pick(const Vec3& origin, const Vec3& direction) const {
     return picker_.pick(origin, direction);

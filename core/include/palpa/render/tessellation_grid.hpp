@@ -23,6 +23,12 @@ struct TessellationOptions {
   double tolerance = 2e-4;
   int min_segments = 2;    ///< per direction, >= 1
   int max_segments = 512;  ///< per direction, >= min_segments
+  /// Also consider the uniform n x n grid that meets the tolerance by the whole surface's
+  /// bounds, and take it when it has fewer cells than the grid through the knots (a body
+  /// far away on screen, whose tolerance is looser than a knot span's bend: level_of_detail.hpp).
+  /// Only where the surface is C1 at every knot (a knot of multiplicity >= degree keeps
+  /// the knot lines), which the bound needs.
+  bool uniform_if_cheaper = false;
 
   bool operator==(const TessellationOptions&) const = default;
 };
@@ -72,7 +78,8 @@ double grid_error_bound(const DerivativeBounds& b, double range_u, double range_
 /// and the tolerance shared between the directions in the proportion that gives the
 /// fewest cells (one direction gets a share, tried in twentieths, the other what the
 /// first's rounded-up counts leave). At least o.min_segments per direction (the widest segments split first).
-/// When a direction would need more than o.max_segments: a uniform grid of max_segments
+/// With o.uniform_if_cheaper, the uniform grid within the tolerance instead when it has
+/// fewer cells. When a direction would need more than o.max_segments: a uniform grid of max_segments
 /// in both directions. Returns the largest cell bound (<= tolerance unless max_segments
 /// was reached). Calls patch_bounds; allocation-free once g, us and vs are sized.
 /// Throws std::invalid_argument for invalid options.
