@@ -30,8 +30,8 @@ add_test(NAME ui.trainee COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_tests>)
 palpa_gui_sanitizer_env(ui.trainee)
 
 # What the trainee sees besides the body: the push-back trace and the finger that sticks on
-# a lump, and the coverage overlay's dots thinned for the view.
-palpa_qt_test(ui_feel_tests ui/push_back_feel_test.cpp ui/coverage_overlay_test.cpp)
+# a lump, the coverage overlay's dots thinned for the view, and the bodies' level of detail.
+palpa_qt_test(ui_feel_tests ui/push_back_feel_test.cpp ui/coverage_overlay_test.cpp ui/level_of_detail_test.cpp)
 add_test(NAME ui.feel COMMAND ${PALPA_XVFB_RUN} -a $<TARGET_FILE:ui_feel_tests>)
 palpa_gui_sanitizer_env(ui.feel)
 

@@ -43,6 +43,8 @@ struct Row {
   double render_ms = 0.0;
   double bodies_changed = 0.0;  // mean per frame
   double bodies_drawn = 0.0;    // mean per frame
+  double triangles = 0.0;       // mean per frame, drawn
+  double deviation_px = 0.0;    // after the last frame (TraineeWindow::drawn_deviation_px)
   double cpu_ms = 0.0;          // process CPU time per frame, all threads
   double haptic_hz = 0.0;
   unsigned long long ticks = 0;
@@ -76,7 +78,7 @@ void wait_until_shown(ui::TraineeWindow& window) {
 // What the measured frames add up to.
 struct FrameTotals {
   std::vector<double> periods;
-  double tessellate = 0.0, upload = 0.0, render = 0.0, changed = 0.0, drawn = 0.0;
+  double tessellate = 0.0, upload = 0.0, render = 0.0, changed = 0.0, drawn = 0.0, triangles = 0.0;
   double cpu_used = 0.0;
 
   void add(double period, const ui::TraineeWindow::FrameTimes& f) {
@@ -86,6 +88,7 @@ struct FrameTotals {
     render += f.render;
     changed += static_cast<double>(f.bodies_changed);
     drawn += static_cast<double>(f.bodies_drawn);
+    triangles += static_cast<double>(f.triangles);
   }
 };
 
@@ -141,6 +144,7 @@ void fill_frame_figures(const FrameTotals& totals, Row& row) {
   row.render_ms = totals.render / n * 1e3;
   row.bodies_changed = totals.changed / n;
   row.bodies_drawn = totals.drawn / n;
+  row.triangles = totals.triangles / n;
   row.cpu_ms = totals.cpu_used / n * 1e3;
 }
 
@@ -155,6 +159,7 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, const Fr
   auto exercise = std::make_unique<live::LiveExercise>(scene::make_table1_case(spec), "table1", options);
   ui::TraineeWindow window(std::move(exercise), QString("Table 1, %1 bodies").arg(spec.bodies));
   window.set_frame_interval(-1);  // this driver draws the frames, uncapped
+  window.set_detail_pixels(bench.detail_px);
   if (zoomed) window.look_at_body(0);
   // The overlay off as a trainee turns it off: its checkbox.
   if (auto* box = window.findChild<QCheckBox*>("coverageOverlay"); box && !bench.overlay) box->setChecked(false);
@@ -172,6 +177,7 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, const Fr
   row.missed = stats.missed();
   row.haptic_hz = stats.mean_period() > 0.0 ? 1.0 / stats.mean_period() : 0.0;
   fill_frame_figures(totals, row);
+  row.deviation_px = window.drawn_deviation_px();
   window.setProperty(ui::TraineeWindow::kCloseWithoutAsking, true);
   window.close();  // finishes the session; the file is only a by-product
   std::filesystem::remove(options.session_path);
@@ -185,12 +191,14 @@ Row measure(const scene::Table1Scene& spec, bool dynamics, bool zoomed, const Fr
 int run_frame_bench(const FrameBenchOptions& options) {
   const auto dir = std::filesystem::temp_directory_path() / fmt::format("palpa-bench-{}", ::getpid());
   std::filesystem::create_directories(dir);
-  std::printf("palpa --bench: trainee window at its default size, coverage overlay %s, haptic loop at 1 kHz, scripted "
-              "finger pressing into the bodies, %.1f s per scene and mode\n",
-              options.overlay ? "on" : "off", options.seconds);
-  std::printf("%6s %5s %5s %4s | %7s %8s %9s | %8s %8s %8s %7s %6s %7s | %8s %7s %7s\n", "bodies", "MAT", "dyn",
-              "view", "fps", "fps p5", "p95 ms", "tess ms", "copy ms", "rend ms", "changed", "drawn", "cpu ms", "haptic",
-              "missed", "ticks");
+  std::printf("palpa --bench: trainee window at its default size, coverage overlay %s, level of detail %s, haptic "
+              "loop at 1 kHz, scripted finger pressing into the bodies, %.1f s per scene and mode\n",
+              options.overlay ? "on" : "off",
+              options.detail_px > 0.0 ? fmt::format("{:g} px", options.detail_px).c_str() : "off",
+              options.seconds);
+  std::printf("%6s %5s %5s %4s | %7s %8s %9s | %8s %8s %8s %7s %6s %7s %6s %6s | %8s %7s %7s\n", "bodies", "MAT",
+              "dyn", "view", "fps", "fps p5", "p95 ms", "tess ms", "copy ms", "rend ms", "changed", "drawn", "cpu ms",
+              "ktri", "dev px", "haptic", "missed", "ticks");
   std::vector<Row> rows;
   const auto& scenes = scene::table1_scenes();
   for (std::size_t k = 0; k < scenes.size(); ++k) {
@@ -202,10 +210,11 @@ int run_frame_bench(const FrameBenchOptions& options) {
       if (zoomed && !largest) continue;
       for (const bool dynamics : {true, false}) {
         const Row r = measure(spec, dynamics, zoomed, options, dir);
-        std::printf("%6d %5d %5s %4s | %7.1f %8.1f %9.2f | %8.2f %8.2f %8.2f %7.2f %6.1f %7.1f | %6.0f Hz %7llu %7llu\n",
-                    r.bodies, r.mat_points, r.dynamics ? "on" : "off", r.zoomed ? "one" : "all", r.fps_mean, r.fps_p5,
-                    r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed, r.bodies_drawn,
-                    r.cpu_ms, r.haptic_hz, r.missed, r.ticks);
+        std::printf(
+            "%6d %5d %5s %4s | %7.1f %8.1f %9.2f | %8.2f %8.2f %8.2f %7.2f %6.1f %7.1f %6.1f %6.2f | %6.0f Hz %7llu %7llu\n",
+            r.bodies, r.mat_points, r.dynamics ? "on" : "off", r.zoomed ? "one" : "all", r.fps_mean, r.fps_p5,
+            r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed, r.bodies_drawn, r.cpu_ms,
+            r.triangles / 1e3, r.deviation_px, r.haptic_hz, r.missed, r.ticks);
         std::fflush(stdout);
         rows.push_back(r);
       }
@@ -215,16 +224,19 @@ int run_frame_bench(const FrameBenchOptions& options) {
   std::printf("\nfps = frames / time; fps p5 = 1 / p95 frame time; tess/copy/rend = mean per frame of the snapshot "
               "+ re-tessellation, the copy into VTK, VTK's render (the rest of a frame is the buffer swap and the event loop); "
               "changed = bodies re-tessellated per frame; drawn = bodies in the camera's view (the others are culled: not re-tessellated, copied or drawn); view one = the camera on body 0 only; cpu ms = CPU time of all the process's threads per frame (what the "
-              "frame costs whatever else runs); haptic = the loop's mean rate over the window's life.\n");
+              "frame costs whatever else runs); ktri = thousands of triangles drawn; dev px = the largest distance between a drawn "
+              "triangle and its surface after the last frame, in pixels at the body's largest magnification; haptic = the loop's mean rate over the window's life.\n");
   if (options.csv) {
     std::ofstream out(*options.csv);
     out << "bodies,mat_points,dynamics,view,frames,fps_mean,fps_p5,frame_p95_ms,tessellate_ms,upload_ms,render_ms,"
-           "bodies_changed_per_frame,bodies_drawn_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks,overlay\n";
+           "bodies_changed_per_frame,bodies_drawn_per_frame,cpu_ms_per_frame,haptic_hz,haptic_missed,haptic_ticks,overlay,"
+           "triangles_per_frame,deviation_px,detail_px\n";
     for (const auto& r : rows) {
-      out << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.1f},{},{},{}",
+      out << fmt::format("{},{},{},{},{},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.3f},{:.1f},{},{},{},{:.0f},{:.3f},{:g}",
                          r.bodies, r.mat_points, r.dynamics ? 1 : 0, r.zoomed ? "one" : "all", r.frames, r.fps_mean,
                          r.fps_p5, r.frame_p95_ms, r.tessellate_ms, r.upload_ms, r.render_ms, r.bodies_changed,
-                         r.bodies_drawn, r.cpu_ms, r.haptic_hz, r.missed, r.ticks, options.overlay ? 1 : 0)
+                         r.bodies_drawn, r.cpu_ms, r.haptic_hz, r.missed, r.ticks, options.overlay ? 1 : 0,
+                         r.triangles, r.deviation_px, options.detail_px)
           << "\n";
     }
     if (!out) {

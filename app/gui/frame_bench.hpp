@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "palpa/ui/trainee_window.hpp"
+
 namespace palpa::gui {
 
 struct FrameBenchOptions {
@@ -13,6 +15,8 @@ struct FrameBenchOptions {
   int max_bodies = 0;                        ///< only scenes with at most this many bodies (0: all)
   std::optional<std::filesystem::path> csv;  ///< also write the rows here
   bool overlay = true;                       ///< the coverage overlay drawn (as a trainee starts)
+  /// Level of detail: the bodies' tolerance on screen, px (TraineeWindow::set_detail_pixels; 0: off).
+  double detail_px = ui::TraineeWindow::kDetailPixels;
 };
 
 /// Prints the table (stdout) and writes the CSV; returns the process exit code.

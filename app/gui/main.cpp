@@ -187,6 +187,11 @@ void add_options(CLI::App& cli, GuiOptions& o) {
   cli.add_option("--max-bodies", o.bench_options.max_bodies,
                  "with --bench: only the scenes with at most this many bodies (default: all)")
       ->check(palpa::options::integer_in(1, 1000));
+  cli.add_option("--detail-px", o.bench_options.detail_px,
+                 fmt::format("with --bench: the level of detail's tolerance on screen, px (default {:g}; 0 draws every "
+                             "body at full detail), to measure what it buys",
+                             palpa::ui::TraineeWindow::kDetailPixels))
+      ->check(palpa::options::finite_in(0.0, 1000.0, "px"));
   cli.footer("Exit codes: 0 success, 1 failure, 2 bad input or usage.");
 }
 
@@ -288,8 +293,8 @@ int main(int argc, char** argv) {
   }
   if (o.bench) return run_bench(argc, argv, o);
   if (!o.bench_csv.empty() || cli.count("--seconds") > 0 || cli.count("--max-bodies") > 0 ||
-      cli.count("--no-overlay") > 0) {
-    print_error("--seconds, --csv, --max-bodies and --no-overlay go with --bench (see palpa --help)");
+      cli.count("--no-overlay") > 0 || cli.count("--detail-px") > 0) {
+    print_error("--seconds, --csv, --max-bodies, --no-overlay and --detail-px go with --bench (see palpa --help)");
     return kBadInput;
   }
   if (o.trainee.empty()) {

@@ -149,13 +149,15 @@ class PushBackFeelTest : public QObject {
 };
 
 int run_coverage_overlay_tests(int argc, char** argv);  // coverage_overlay_test.cpp
+int run_level_of_detail_tests(int argc, char** argv);   // level_of_detail_test.cpp
 
 int main(int argc, char** argv) {
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
   PushBackFeelTest test;
   const int feel = QTest::qExec(&test, argc, argv);
-  return feel | run_coverage_overlay_tests(argc, argv);
+  const int overlay = run_coverage_overlay_tests(argc, argv);
+  return feel | overlay | run_level_of_detail_tests(argc, argv);
 }
 
 #include "push_back_feel_test.moc"

@@ -51,14 +51,37 @@ class FrameBench(unittest.TestCase):
             # the parts of a frame cannot take longer than the mean frame
             parts = float(r["tessellate_ms"]) + float(r["upload_ms"]) + float(r["render_ms"])
             self.assertLessEqual(parts, 1000.0 / float(r["fps_mean"]) + 1e-6, r)
+            # what the frame drew, and how far from the surfaces (a body filling the view keeps
+            # the tolerance's grid: within about a pixel)
+            self.assertGreater(float(r["triangles_per_frame"]), 0.0, r)
+            self.assertGreaterEqual(float(r["deviation_px"]), 0.0, r)
+            self.assertLess(float(r["deviation_px"]), 2.0, r)
+            self.assertEqual(float(r["detail_px"]), 0.5, r)
         self.assertIn("bodies", res.stdout)
         self.assertEqual(sum(1 for line in res.stdout.splitlines() if line.strip().startswith("1 ")), 4, res.stdout)
 
     def test_bench_options_without_bench_are_refused(self):
-        for option in (["--seconds", "1"], ["--no-overlay"]):
+        for option in (["--seconds", "1"], ["--no-overlay"], ["--detail-px", "4"]):
             res = subprocess.run([GUI] + option, capture_output=True, text=True, timeout=60)
             self.assertEqual(res.returncode, 2)
             self.assertIn("--bench", res.stderr)
+
+    def test_the_level_of_detail_thins_the_many_small_bodies(self):
+        # Table 1's 10-body scene, each body small on screen: the level of detail draws fewer
+        # triangles than full detail (--detail-px 0), and the header says which was measured.
+        with tempfile.TemporaryDirectory(prefix="palpa_framebench_") as d:
+            rows = {}
+            for px in ("0", "0.5"):
+                out = os.path.join(d, "frames.csv")
+                res = bench(["--seconds", "0.3", "--max-bodies", "10", "--detail-px", px, "--csv", out])
+                self.assertEqual(res.returncode, 0, res.stderr)
+                self.assertIn("level of detail " + ("off" if px == "0" else "0.5 px"), res.stdout)
+                with open(out, newline="") as f:
+                    rows[px] = [r for r in csv.DictReader(f) if r["bodies"] == "10"]
+        self.assertEqual(len(rows["0"]), 2)
+        for full, coarse in zip(rows["0"], rows["0.5"]):
+            self.assertLess(2.0 * float(coarse["triangles_per_frame"]), float(full["triangles_per_frame"]))
+            self.assertLess(float(coarse["deviation_px"]), 2.0)
 
     def test_the_overlay_can_be_left_out_and_the_rows_say_so(self):
         with tempfile.TemporaryDirectory(prefix="palpa_framebench_") as d:

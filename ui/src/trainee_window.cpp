@@ -32,7 +32,6 @@
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
 
-#include "palpa/render/frustum.hpp"
 #include "palpa/score/figures.hpp"
 #include "palpa/ui/coverage_overlay.hpp"
 #include "palpa/ui/body_view.hpp"
@@ -450,28 +449,6 @@ void TraineeWindow::colour_mark(const score::MarkResult& m) {
   }
 }
 
-std::size_t TraineeWindow::cull_bodies() {
-  std::array<double, 24> planes{};
-  renderer_->GetActiveCamera()->GetFrustumPlanes(renderer_->GetTiledAspectRatio(), planes.data());
-  const render::Frustum frustum(planes);
-  const auto& scene = exercise_->scene();
-  std::size_t drawn = 0;
-  for (std::size_t b = 0; b < scene.size(); ++b) {
-    // The rest box already allows the largest radius on every side of the skeleton's
-    // control points; a press moves the drawn contours inwards, and the oscillators
-    // overshoot by a few per cent of the press: a tenth of the diagonal is a safe margin.
-    const auto& box = scene.body(b).bounds;
-    const palpa::Vec3 pad = palpa::Vec3::Constant(0.1 * (box.hi - box.lo).norm());
-    const bool visible = frustum.may_see(box.lo - pad, box.hi + pad);
-    if (visible != exercise_->meshes().visible(b)) {
-      exercise_->set_body_visible(b, visible);
-      surfaces_->set_visible(b, visible);
-    }
-    drawn += visible ? 1 : 0;
-  }
-  return drawn;
-}
-
 void TraineeWindow::look_at_body(std::size_t body) {
   request_render();
   const auto& box = exercise_->scene().body(body).bounds;
@@ -496,7 +473,7 @@ void TraineeWindow::frame() {
   auto t0 = Clock::now();
   auto t1 = t0, t2 = t0;
   last_frame_.bodies_changed = 0;
-  last_frame_.bodies_drawn = cull_bodies();
+  fit_bodies_to_view();
   if (exercise_->started() && !exercise_->finished()) {
     exercise_->update();
     t1 = Clock::now();

@@ -113,11 +113,22 @@ class TraineeWindow : public QMainWindow {
     double render = 0.0;
     std::size_t bodies_changed = 0;
     std::size_t bodies_drawn = 0;  ///< in the camera's view (the rest are culled)
+    std::size_t triangles = 0;     ///< drawn: the visible bodies' tops and bottoms
   };
   const FrameTimes& last_frame() const { return last_frame_; }
   /// Points the camera at one body, close enough that its middle fills the view (palpa
   /// --bench measures the culling of the others this way).
   void look_at_body(std::size_t body);
+  /// Level of detail: each body's drawn contours within this many pixels of its surface
+  /// by the tessellation's bound, at the body's largest magnification (default
+  /// kDetailPixels), and never coarser than the exercise's tolerance in metres allows
+  /// close up; 0 draws every body at that tolerance however small it is on screen.
+  void set_detail_pixels(double pixels);
+  static constexpr double kDetailPixels = 0.5;
+  /// The largest distance between a drawn triangle and the surface it stands for, over the
+  /// visible bodies, in pixels at each body's largest magnification (DisplayMeshes::
+  /// deviation: samples every triangle, for tests and palpa --bench, not every frame).
+  double drawn_deviation_px() const;
   /// Milliseconds between timed frames (16 by default, ~60 Hz); 0 draws whenever the event
   /// loop is idle; a negative value stops the timer (a driver then calls frame() itself).
   void set_frame_interval(int ms);
@@ -173,8 +184,13 @@ class TraineeWindow : public QMainWindow {
   /// The pressure setting as the trace compares it (the dial's step, or the force target).
   double pressure_setting() const { return force_target_ > 0.0 ? 100.0 + force_target_ : dial_.index(); }
   /// Off-screen culling: marks each body visible or not from the camera's frustum (its rest
-  /// box grown by a margin for deformation); returns how many are visible.
-  std::size_t cull_bodies();
+  /// box grown by a margin for deformation), and gives each visible one the grid its size
+  /// on screen is worth (level of detail); fills the frame's bodies_drawn and triangles.
+  void fit_bodies_to_view();
+  /// The largest magnification of body b's rest box from the camera (render::pixels_per_metre).
+  double pixels_per_metre(std::size_t body) const;
+  /// Body b's display tolerance (m) for detail_pixels_ on screen; 0 when the level of detail is off.
+  double detail_tolerance(std::size_t body) const;
   void request_render() { render_requested_ = true; }
 
   std::unique_ptr<live::LiveExercise> exercise_;
@@ -211,6 +227,7 @@ class TraineeWindow : public QMainWindow {
   bool idle_ = false;       ///< the last second drew only the idle redraws
   double frame_rate_ = 0.0;
   FrameTimes last_frame_;
+  double detail_pixels_ = kDetailPixels;
   /// The next frame() draws (something changed); otherwise an unchanged scene is redrawn
   /// only every kIdleRedrawMs while the timer drives the frames.
   bool render_requested_ = true;
