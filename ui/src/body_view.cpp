@@ -22,9 +22,9 @@ vtkSmartPointer<vtkRenderer> add_body_renderer(VtkView& view, vtkGenericOpenGLRe
   window->SetMultiSamples(0);
   view.setRenderWindow(window);
   auto renderer = vtkSmartPointer<vtkRenderer>::New();
-  renderer->SetBackground(0.13, 0.15, 0.19);
-  renderer->SetBackground2(0.30, 0.33, 0.40);
-  renderer->GradientBackgroundOn();
+  // One colour, not a gradient: under software OpenGL the gradient is a shaded quad over the
+  // whole view every frame, a tenth of a single body's frame (BENCHMARKS.md, "Level of detail").
+  renderer->SetBackground(0.20, 0.22, 0.28);
   window->AddRenderer(renderer);
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   view.interactor()->SetInteractorStyle(style);
