@@ -83,7 +83,7 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # builds against it.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "udev")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
-  "cmake, g++, libeigen3-dev, nlohmann-json3-dev, libfmt-dev, libsqlite3-dev, zlib1g-dev, desktop-file-utils")
+  "cmake, g++, libeigen3-dev, nlohmann-json3-dev, libfmt-dev, libnanoflann-dev, libsqlite3-dev, zlib1g-dev, desktop-file-utils")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${PROJECT_SOURCE_DIR}/packaging/debian/postinst;${PROJECT_SOURCE_DIR}/packaging/debian/postrm")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 include(CPack)

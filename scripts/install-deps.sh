@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build python3 python3-jsonschema
   ccache  # compiler cache (cmake/Ccache.cmake): a second build of the same sources is mostly cache hits
   libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+  libnanoflann-dev  # k-d tree: the search pattern's nearest points between strips (core/score)
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libsqlite3-dev sqlite3
   qtbase5-dev libvtk9-dev libvtk9-qt-dev xvfb xauth

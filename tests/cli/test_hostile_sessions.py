@@ -7,7 +7,10 @@ The files are built here from a sample session (its meta rows) with Python's sql
   - the same on a body 200 m wide: no longer a plausible body, refused by the reader;
   - a body with one boundary skeleton point pulled 0.45 m out (its cells as large as a
     plausible body allows), palpated 10 000 times: every coverage stamp once flooded the
-    whole grid; pulled 50 m out, it is refused.
+    whole grid; pulled 50 m out, it is refused;
+  - jumps across the body every tick on one line, then on another: two strips of 100 000
+    points each, whose spacing once compared every point of one with every point of the
+    other (10^10 distances).
 
 Run:
     /usr/bin/python3 tests/cli/test_hostile_sessions.py --cli PATH/palpa-cli --repo REPO
@@ -121,6 +124,19 @@ class HostileSessions(unittest.TestCase):
         self.assertEqual(res.returncode, 2, res.stdout)
         self.assertIn("not a plausible body", res.stderr)
         self.assertBounded(seconds, mb, "the 50 m spike")
+
+    def test_two_strips_of_jumps_score_in_n_log_n(self):
+        n = 100000
+        lines = [(k * 1e-3, 0.02 if k % 2 else 0.98, 0.3) for k in range(n)]
+        lines += [((n + k) * 1e-3, 0.02 if k % 2 else 0.98, 0.7) for k in range(n)]
+        path = os.path.join(self.tmp.name, "strips.palpa")
+        session_with(path, flat_body(0.1), lines)
+        res, seconds, mb = timed(["score", path, "--json"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertBounded(seconds, mb, "two strips of 100 000 jumps")
+        # The strips lie 0.4 of the 0.1 m body apart, on a flat top: 40 mm.
+        spacing = json.loads(res.stdout)["pattern"]["strip_spacing_mm"]
+        self.assertAlmostEqual(spacing, 40.0, delta=0.5)
 
 
 class LongSessions(unittest.TestCase):

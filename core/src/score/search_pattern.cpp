@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <optional>
+
+#include "palpa/score/nearest_distance.hpp"
 
 namespace palpa::score::detail {
 namespace {
@@ -188,7 +189,8 @@ std::vector<std::vector<Run>> runs_along(const std::vector<PathPoint>& path,
 // Neighbouring strips: positions closer than half a pad are one strip passed twice. The
 // gap between two strips is measured on the skin, not in the top-down view (which
 // shortens it on a dome's slopes): the median over one strip's points of the distance to
-// the nearest point of the next. Returns the median gap in mm (0: fewer than two strips).
+// the nearest point of the next (a k-d tree: O(n log n) however many points a session
+// piles into two strips). Returns the median gap in mm (0: fewer than two strips).
 double strip_spacing_mm(std::vector<std::vector<Run>>& runs, double pad_radius) {
   std::vector<double> gaps;
   for (auto& body_runs : runs) {
@@ -200,16 +202,7 @@ double strip_spacing_mm(std::vector<std::vector<Run>>& runs, double pad_radius) 
       strips.back().insert(strips.back().end(), body_runs[k].points.begin(), body_runs[k].points.end());
       last = body_runs[k].position;
     }
-    for (std::size_t k = 1; k < strips.size(); ++k) {
-      std::vector<double> nearest;
-      nearest.reserve(strips[k - 1].size());
-      for (const Vec3& p : strips[k - 1]) {
-        double closest = std::numeric_limits<double>::infinity();
-        for (const Vec3& q : strips[k]) closest = std::min(closest, (p - q).squaredNorm());
-        nearest.push_back(std::sqrt(closest));
-      }
-      gaps.push_back(median(std::move(nearest)));
-    }
+    for (std::size_t k = 1; k < strips.size(); ++k) gaps.push_back(median(nearest_distances(strips[k - 1], strips[k])));
   }
   return 1000.0 * median(gaps);
 }

@@ -3,6 +3,7 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/contour_grid.cpp
   ${CMAKE_CURRENT_LIST_DIR}/coverage.cpp
   ${CMAKE_CURRENT_LIST_DIR}/search_pattern.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/nearest_distance.cpp
   ${CMAKE_CURRENT_LIST_DIR}/marks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/timeline.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exam_grids.cpp
