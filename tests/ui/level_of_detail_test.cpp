@@ -21,6 +21,15 @@
 class LevelOfDetailTest : public QObject {
   Q_OBJECT
 
+  // A session in `dir`, the haptic loop without real-time priority.
+  static palpa::live::LiveOptions options(const QTemporaryDir& dir, const QString& file) {
+    palpa::live::LiveOptions o;
+    o.trainee = "ui-test";
+    o.session_path = dir.filePath(file).toStdString();
+    o.realtime.request_fifo = false;
+    return o;
+  }
+
   // Two frames: the level of detail is fitted at the start of a frame, so the second draws it.
   static QImage draw(palpa::ui::TraineeWindow& w) {
     w.frame();
@@ -44,10 +53,7 @@ class LevelOfDetailTest : public QObject {
  private slots:
   void smallBodiesAreDrawnCoarserWithinAPixel() {
     QTemporaryDir dir;
-    palpa::live::LiveOptions o;
-    o.trainee = "ui-test";
-    o.session_path = dir.filePath("lod.palpa").toStdString();
-    o.realtime.request_fifo = false;
+    const auto o = options(dir, "lod.palpa");
     const auto& spec = palpa::scene::table1_scenes().back();
     QCOMPARE(spec.bodies, 35);
     // Not started: the bodies at rest, the same picture at every draw.
@@ -83,10 +89,7 @@ class LevelOfDetailTest : public QObject {
 
   void aDomeFarAwayLooksTheSameWithFewerTriangles() {
     QTemporaryDir dir;
-    palpa::live::LiveOptions o;
-    o.trainee = "ui-test";
-    o.session_path = dir.filePath("lod-dome.palpa").toStdString();
-    o.realtime.request_fifo = false;
+    const auto o = options(dir, "lod-dome.palpa");
     const std::string breast = PALPA_SOURCE_DIR "/data/cases/default.json";
     palpa::ui::TraineeWindow window(
         std::make_unique<palpa::live::LiveExercise>(palpa::io::load_case(breast), breast, o), "default.json", false);

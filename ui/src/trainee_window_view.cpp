@@ -22,7 +22,7 @@ void TraineeWindow::set_detail_pixels(double pixels) {
   request_render();
 }
 
-double TraineeWindow::pixels_per_metre(std::size_t body) const {
+render::ViewForDetail TraineeWindow::detail_view() const {
   auto* camera = renderer_->GetActiveCamera();
   render::ViewForDetail view;
   camera->GetPosition(view.eye.data());
@@ -31,22 +31,27 @@ double TraineeWindow::pixels_per_metre(std::size_t body) const {
   view.viewport_height = std::max(1, renderer_->GetSize()[1]);
   view.parallel = camera->GetParallelProjection() != 0;
   view.parallel_scale = camera->GetParallelScale();
+  return view;
+}
+
+double TraineeWindow::pixels_per_metre(const render::ViewForDetail& view, std::size_t body) const {
   const auto& box = exercise_->scene().body(body).bounds;
   return render::pixels_per_metre(view, box.lo, box.hi);
 }
 
 double TraineeWindow::drawn_deviation_px() const {
   const auto& meshes = exercise_->meshes();
+  const auto view = detail_view();
   double px = 0.0;
   for (std::size_t b = 0; b < meshes.size(); ++b) {
-    if (meshes.visible(b)) px = std::max(px, meshes.deviation(b) * pixels_per_metre(b));
+    if (meshes.visible(b)) px = std::max(px, meshes.deviation(b) * pixels_per_metre(view, b));
   }
   return px;
 }
 
-double TraineeWindow::detail_tolerance(std::size_t body) const {
+double TraineeWindow::detail_tolerance(const render::ViewForDetail& view, std::size_t body) const {
   if (!(detail_pixels_ > 0.0)) return 0.0;  // the options' own (set_tolerance never goes finer)
-  const double tolerance = render::object_tolerance_from_screen(detail_pixels_, pixels_per_metre(body));
+  const double tolerance = render::object_tolerance_from_screen(detail_pixels_, pixels_per_metre(view, body));
   // Rounded down to a step of 2^(1/4): a camera on the move re-tessellates a body only when
   // its size on screen changed by a fifth, and the tolerance never exceeds detail_pixels_.
   return std::exp2(std::floor(4.0 * std::log2(tolerance)) / 4.0);
@@ -58,6 +63,7 @@ void TraineeWindow::fit_bodies_to_view() {
   const render::Frustum frustum(planes);
   const auto& scene = exercise_->scene();
   const auto& meshes = exercise_->meshes();
+  const auto view = detail_view();
   bool detail_changed = false;
   last_frame_.bodies_drawn = 0;
   last_frame_.triangles = 0;
@@ -73,9 +79,7 @@ void TraineeWindow::fit_bodies_to_view() {
       surfaces_->set_visible(b, visible);
     }
     if (!visible) continue;
-    const double before = meshes.tolerance(b);
-    exercise_->set_body_tolerance(b, detail_tolerance(b));
-    detail_changed = detail_changed || meshes.tolerance(b) != before;
+    detail_changed = exercise_->set_body_tolerance(b, detail_tolerance(view, b)) || detail_changed;
     ++last_frame_.bodies_drawn;
     last_frame_.triangles += meshes.top(b).triangle_count() + meshes.bottom(b).triangle_count();
   }

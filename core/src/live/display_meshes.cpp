@@ -26,16 +26,17 @@ double DisplayMeshes::deviation(std::size_t body) const {
   return std::max(render::max_parametric_deviation(b.top_mesh, b.top), render::max_parametric_deviation(b.bottom_mesh, b.bottom));
 }
 
-void DisplayMeshes::set_tolerance(std::size_t body, double tolerance) {
+bool DisplayMeshes::set_tolerance(std::size_t body, double tolerance) {
   auto& b = bodies_[body];
   render::TessellationOptions o = options_;
   if (tolerance > options_.tolerance && std::isfinite(tolerance)) {
     o.tolerance = tolerance;
     o.uniform_if_cheaper = true;
   }
-  if (o == b.options) return;
+  if (o == b.options) return false;
   b.options = o;
   b.stale = true;
+  return true;
 }
 
 namespace {

@@ -39,7 +39,6 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<do
 
 std::vector<double> nearest_distances(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
   std::vector<double> out;
-  if (to.empty()) return out;
   // Each point once: a tree over many copies of one point (a session jumping across a body
   // on one line puts every midpoint there) visits every copy, each tied at the same
   // distance, and so does a query repeated. Copies change no nearest distance.

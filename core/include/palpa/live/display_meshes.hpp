@@ -34,8 +34,8 @@ class DisplayMeshes {
   /// the body's magnification, render::object_tolerance_from_screen), never finer than the
   /// options'. Looser than the options', the grid may be uniform when that has fewer cells
   /// (TessellationOptions::uniform_if_cheaper). A change re-tessellates the body at the next
-  /// update() even without a new snapshot.
-  void set_tolerance(std::size_t body, double tolerance);
+  /// update() even without a new snapshot. Returns true when the body's tolerance changed.
+  bool set_tolerance(std::size_t body, double tolerance);
   double tolerance(std::size_t body) const { return bodies_[body].options.tolerance; }
   /// The largest distance (m) between the body's meshes and the surfaces they stand for
   /// (render::max_parametric_deviation of top and bottom): samples every triangle, for

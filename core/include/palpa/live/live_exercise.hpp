@@ -139,8 +139,8 @@ class LiveExercise {
   void set_body_visible(std::size_t body, bool visible) { meshes_.set_visible(body, visible); }
   /// Level of detail: the display tolerance (m) of the body's drawn contours
   /// (DisplayMeshes::set_tolerance), applied at the next update() with a new snapshot or
-  /// refresh_meshes().
-  void set_body_tolerance(std::size_t body, double tolerance) { meshes_.set_tolerance(body, tolerance); }
+  /// refresh_meshes(). Returns true when it changed.
+  bool set_body_tolerance(std::size_t body, double tolerance) { return meshes_.set_tolerance(body, tolerance); }
   /// Re-tessellates the bodies whose detail changed without waiting for a new snapshot
   /// (the view moved while the exercise is not running); returns how many changed.
   std::size_t refresh_meshes() { return meshes_.update(loop_->snapshot()); }

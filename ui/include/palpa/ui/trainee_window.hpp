@@ -22,6 +22,7 @@
 #include "palpa/live/live_coverage.hpp"
 #include "palpa/live/live_exercise.hpp"
 #include "palpa/live/stroke_trace.hpp"
+#include "palpa/render/level_of_detail.hpp"
 #include "palpa/ui/body_surfaces.hpp"
 
 class QCheckBox;
@@ -187,10 +188,12 @@ class TraineeWindow : public QMainWindow {
   /// box grown by a margin for deformation), and gives each visible one the grid its size
   /// on screen is worth (level of detail); fills the frame's bodies_drawn and triangles.
   void fit_bodies_to_view();
-  /// The largest magnification of body b's rest box from the camera (render::pixels_per_metre).
-  double pixels_per_metre(std::size_t body) const;
+  /// The camera as the level of detail needs it.
+  render::ViewForDetail detail_view() const;
+  /// The largest magnification of body b's rest box from `view` (render::pixels_per_metre).
+  double pixels_per_metre(const render::ViewForDetail& view, std::size_t body) const;
   /// Body b's display tolerance (m) for detail_pixels_ on screen; 0 when the level of detail is off.
-  double detail_tolerance(std::size_t body) const;
+  double detail_tolerance(const render::ViewForDetail& view, std::size_t body) const;
   void request_render() { render_requested_ = true; }
 
   std::unique_ptr<live::LiveExercise> exercise_;
