@@ -50,8 +50,11 @@ double TraineeWindow::drawn_deviation_px() const {
 }
 
 double TraineeWindow::detail_tolerance(const render::ViewForDetail& view, std::size_t body) const {
-  if (!(detail_pixels_ > 0.0)) return 0.0;  // the options' own (set_tolerance never goes finer)
-  const double tolerance = render::object_tolerance_from_screen(detail_pixels_, pixels_per_metre(view, body));
+  const double ppm = pixels_per_metre(view, body);
+  // Off, or a camera with no finite magnification (a degenerate view): the options' own
+  // tolerance (set_tolerance never goes finer than that).
+  if (!(detail_pixels_ > 0.0) || !(ppm > 0.0) || !std::isfinite(ppm)) return 0.0;
+  const double tolerance = render::object_tolerance_from_screen(detail_pixels_, ppm);
   // Rounded down to a step of 2^(1/4): a camera on the move re-tessellates a body only when
   // its size on screen changed by a fifth, and the tolerance never exceeds detail_pixels_.
   return std::exp2(std::floor(4.0 * std::log2(tolerance)) / 4.0);
