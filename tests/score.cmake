@@ -10,6 +10,7 @@ add_executable(score_tests
   core/score/score_pattern_test.cpp
   core/score/nearest_distance_test.cpp
   core/score/score_stream_test.cpp
+  core/score/score_from_json_test.cpp
   core/score/score_figures_test.cpp
   core/score/live_coverage_test.cpp
 )

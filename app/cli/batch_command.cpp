@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "batch_store.hpp"
 #include "commands.hpp"
@@ -56,7 +57,9 @@ struct BatchOptions {
   /// the file's extra.station), and the stored sessions that could not be written.
   std::map<std::string, std::string> station_of;
   std::map<std::string, StoredRow> row_of;  ///< --store --out: each file's row, which it must agree with
+  std::map<std::string, std::string> result_of;  ///< --store --out: the worker's stored score of each file
   std::vector<report::SkippedFile> not_downloaded;
+  std::vector<std::string> pending;  ///< --store --out: sessions no worker has scored yet
 };
 
 
@@ -198,6 +201,22 @@ void check_row(const session::Session& head, const StoredRow& row, const std::st
   }
 }
 
+/// The score a worker stored for a file from the store (its figures as the worker found
+/// them, the thresholds from the file's case), or the file scored here.
+score::Score stored_or_scored(session::SampleStream& stream, const std::string& file, const BatchOptions& o) {
+  const auto it = o.result_of.find(file);
+  if (it == o.result_of.end()) return score::score_stream(stream, file);
+  const auto json = nlohmann::json::parse(it->second, nullptr, false);
+  std::vector<io::Problem> problems;
+  const auto thresholds = score::thresholds_from_case(stream.head().info.case_document, problems);
+  try {
+    if (json.is_discarded() || !problems.empty()) throw std::invalid_argument("stored score: not readable");
+    return score::score_from_json(json, thresholds);
+  } catch (const std::invalid_argument& e) {
+    throw session::SessionError(file, "score", std::string(e.what()) + "; not reported");
+  }
+}
+
 /// Reads and scores one session (and writes its report files); the samples are dropped on return.
 Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOptions& o, std::string& output_error) {
   Outcome outcome;
@@ -218,7 +237,7 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
       outcome.left_out = true;
       return outcome;
     }
-    auto score = score::score_stream(stream, input.file);
+    auto score = stored_or_scored(stream, input.file, o);
     if (o.reports) {
       try {  // the force plot's trace from a second pass: no sample is kept
         report::write_session_report(sessions_dir, input.stem, header, *report::read_force_trace(input.file), score,
@@ -407,6 +426,11 @@ void write_cohort(const fs::path& out, const std::vector<Scored>& scored,
   page.skipped = skipped;
   page.selection = o.filter.describe();
   page.notes = report::left_out_notes(left_out);
+  if (!o.pending.empty()) {
+    page.notes.push_back(fmt::format("{} stored session{} not scored by a worker yet (pending): not in this report; "
+                                     "they are scored by palpa-cli batch --store URL --worker",
+                                     o.pending.size(), o.pending.size() == 1 ? " is" : "s are"));
+  }
   report::write_text(out / "cohort.html", report::cohort_html(page));
   for (const auto& note : page.notes) std::fprintf(stderr, "batch: %s\n", note.c_str());
 }
@@ -516,6 +540,8 @@ Command add_batch_command(CLI::App& parent) {
                 folder.paths = d.files;
                 folder.station_of = d.station_of;
                 folder.row_of = d.row_of;
+                folder.result_of = d.result_of;
+                folder.pending = d.pending;
                 folder.not_downloaded = d.skipped;
                 return run_batch(folder);
               });

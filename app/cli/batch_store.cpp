@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -47,12 +48,23 @@ struct WorkerTally {
 // Scores one claimed session in a child process and records the outcome: scored, not
 // scorable (ended with the reason), scorer killed (given back; retired after
 // store_settings.max_score_attempts claims), or lease lost.
-void work_on(store::Connection& c, const store::Claim& claim, const std::string& owner, const ScoreLimits& limits,
+void work_on(store::Connection& c, const store::Claim& claim, const std::string& owner, const StoreBatchOptions& o,
              WorkerTally& tally) {
   IsolatedScore scored;
+  // The lease is renewed at a third of its length while the scorer runs: however long the
+  // scoring (up to the child's wall limit), no other worker takes the session over.
+  auto renewed = std::chrono::steady_clock::now();
+  const auto every = std::chrono::duration<double>(o.lease_s / 3.0);
+  auto renew = [&] {
+    if (std::chrono::steady_clock::now() - renewed < every) return;
+    store::renew_claim(c, claim, owner, o.lease_s);
+    renewed = std::chrono::steady_clock::now();
+  };
+  const auto& limits = o.limits;
   try {
-    scored = score_in_child(claim, limits);
+    scored = score_in_child(claim, limits, renew);
   } catch (const store::StoreError& e) {  // no memory file, pipe or process: this machine's trouble, retried
+    if (e.unreachable()) throw;                // the server went away while renewing: reconnect
     scored.error = store::describe(claim) + ": " + e.what();
   } catch (const std::exception& e) {  // a row the scorer cannot be handed (text that is not UTF-8)
     scored.outcome = ScoreOutcome::Refused;
@@ -86,8 +98,15 @@ void work_on(store::Connection& c, const store::Claim& claim, const std::string&
 // Claims, scores and writes over `c` until nothing is left (or for ever with --follow).
 void serve(store::Connection& c, const StoreBatchOptions& o, const std::string& owner, WorkerTally& tally) {
   for (;;) {
-    if (auto claim = store::claim_next(c, owner, o.lease_s)) {
-      work_on(c, *claim, owner, o.limits, tally);
+    std::optional<store::Claim> claim;
+    try {
+      claim = store::claim_next(c, owner, o.lease_s);
+    } catch (const store::ClaimError& e) {  // one row's trouble, given back: go on with the next
+      print_error(e.what());
+      continue;
+    }
+    if (claim) {
+      work_on(c, *claim, owner, o, tally);
       continue;
     }
     // Nothing free: done when nothing is pending, else a lease may expire (a killed worker).
@@ -205,6 +224,10 @@ StoreDownload download(store::Connection& c, const fs::path& folder, const repor
       d.skipped.push_back({name, report::printable("not scored by the workers: " + s.last_error, 400)});
       continue;
     }
+    if (!s.scored) {  // scored only by a worker, under its limits: this process never scores a stored file
+      d.pending.push_back(name);
+      continue;
+    }
     try {
       const auto path = download_path(folder, s);
       fs::create_directories(path.parent_path());
@@ -212,6 +235,7 @@ StoreDownload download(store::Connection& c, const fs::path& folder, const repor
       d.files.push_back(path.string());
       d.station_of[path.string()] = s.station;
       d.row_of[path.string()] = {s.session_id, s.trainee, s.mode};
+      d.result_of[path.string()] = store::stored_result(c, s.id);
     } catch (const store::StoreError& e) {
       if (e.unreachable()) throw;
       d.skipped.push_back({name, report::printable(e.what(), 400)});
@@ -229,9 +253,10 @@ int run_export(const StoreBatchOptions& o, const std::string& out,
     store::Connection c(o.store);
     store::check_schema(c);
     d = download(c, fs::path(out) / "stored", o.filter);
-    std::fprintf(stderr, "batch --store %s: %zu sessions in %s%s\n", c.target().c_str(), d.files.size(),
+    std::fprintf(stderr, "batch --store %s: %zu scored sessions in %s%s%s\n", c.target().c_str(), d.files.size(),
                  (fs::path(out) / "stored").c_str(),
-                 d.skipped.empty() ? "" : fmt::format(", {} could not be written", d.skipped.size()).c_str());
+                 d.skipped.empty() ? "" : fmt::format(", {} not scorable or not written", d.skipped.size()).c_str(),
+                 d.pending.empty() ? "" : fmt::format(", {} pending (not scored by a worker yet)", d.pending.size()).c_str());
   } catch (const std::exception& e) {  // StoreError, or a filesystem error
     print_error(e.what());
     return kFailure;
@@ -248,7 +273,8 @@ void add_store_batch_options(CLI::App* app, StoreBatchOptions& o) {
   app->add_flag("--worker", o.worker, "with --store: claim and score unscored sessions (leases), exit when none is left");
   app->add_flag("--follow", o.follow, "with --worker: keep polling for new sessions instead of exiting");
   app->add_option("--lease", o.lease_s, "with --worker: seconds a claimed session is held before another worker may "
-                                        "take it over; default 600")
+                                        "take it over; renewed every third of it while the session is scored, so it "
+                                        "only runs out when its worker is gone; default 120")
       ->check(options::finite_in(1.0, 86400.0, "s"));
   app->add_option("--score-memory", o.limits.memory_mb,
                   "with --worker: MB of memory each session's scorer may use (a child process); default 2048")

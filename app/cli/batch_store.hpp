@@ -19,7 +19,7 @@ struct StoreBatchOptions {
   std::string store;      ///< libpq connection string; empty: the folder batch
   bool worker = false;
   bool follow = false;    ///< worker: keep polling when nothing is left
-  double lease_s = 600.0;
+  double lease_s = 120.0;  ///< renewed while a session is scored (batch_store.cpp)
   int jobs = 0;           ///< worker threads (batch's --jobs); 0: all cores
   ScoreLimits limits;     ///< worker: each session is scored in a child process under these
   /// --out: the batch's own filter; the store is asked for a superset of it (a day wider),
@@ -40,7 +40,11 @@ struct StoreDownload {
   std::map<std::string, std::string> station_of;  ///< file -> the station it was pushed from
   /// file -> what the store's row says of it (checked by the server); the file must agree.
   std::map<std::string, StoredRow> row_of;
+  /// file -> the score a worker stored for it (JSON): the report reads it, never scores again.
+  std::map<std::string, std::string> result_of;
   std::vector<report::SkippedFile> skipped;
+  /// Sessions no worker has scored yet: named in the report as pending, not scored here.
+  std::vector<std::string> pending;
 };
 
 /// Declares --store, --worker, --follow and --lease on the batch command.

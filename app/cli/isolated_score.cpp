@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <new>
 #include <vector>
 
@@ -158,7 +159,8 @@ struct ChildOutput {
 
 // Collects the child's stdout and stderr until both close or the deadline passes (then
 // the child is killed), and reaps it.
-ChildOutput wait_for(pid_t pid, int out_fd, int err_fd, std::chrono::seconds limit) {
+ChildOutput wait_for(pid_t pid, int out_fd, int err_fd, std::chrono::seconds limit,
+                     const std::function<void()>& while_waiting) {
   ChildOutput r;
   const auto deadline = std::chrono::steady_clock::now() + limit;
   pollfd fds[2] = {{out_fd, POLLIN, 0}, {err_fd, POLLIN, 0}};
@@ -170,6 +172,16 @@ ChildOutput wait_for(pid_t pid, int out_fd, int err_fd, std::chrono::seconds lim
       r.timed_out = true;
       kill(pid, SIGKILL);
       break;
+    }
+    if (while_waiting) {
+      try {
+        while_waiting();
+      } catch (...) {  // the caller cannot go on (its server went away): the child goes too
+        kill(pid, SIGKILL);
+        while (waitpid(pid, &r.status, 0) < 0 && errno == EINTR) {
+        }
+        throw;
+      }
     }
     if (poll(fds, 2, static_cast<int>(std::min<long long>(left.count(), 1000))) < 0 && errno != EINTR) break;
     for (int k = 0; k < 2; ++k) {
@@ -232,7 +244,8 @@ IsolatedScore outcome_of(const ChildOutput& r, const store::Claim& claim, const 
 
 }  // namespace
 
-IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limits) {
+IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limits,
+                             const std::function<void()>& while_waiting) {
   const Fd session(memory_file("palpa-session", claim.file));
   const Fd row(memory_file("palpa-claim", claim_json(claim).dump()));
   Pipe out, err;
@@ -251,7 +264,8 @@ IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limit
   if (pid == 0) become_scorer(plan);
   out.write_end.reset();
   err.write_end.reset();
-  const auto r = wait_for(pid, out.read_end.get(), err.read_end.get(), std::chrono::seconds(2 * limits.cpu_s + 10));
+  const auto r = wait_for(pid, out.read_end.get(), err.read_end.get(), std::chrono::seconds(2 * limits.cpu_s + 10),
+                          while_waiting);
   return outcome_of(r, claim, limits);
 }
 

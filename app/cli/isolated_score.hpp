@@ -3,6 +3,7 @@
 // sessions"): a session file is untrusted, and one that makes the scorer use all memory or
 // run for ever must cost its worker nothing but that child. The bytes go to the child in an
 // anonymous memory file (memfd), so no copy outlives the worker, whatever kills it.
+#include <functional>
 #include <string>
 
 #include "palpa/store/work_queue.hpp"
@@ -27,7 +28,10 @@ struct IsolatedScore {
 };
 
 /// Scores `claim` in a child process (this executable, `store score-claim`) under `limits`.
-IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limits);
+/// `while_waiting` runs about once a second while the child works (the worker renews its
+/// lease there); an exception from it propagates after the child is killed.
+IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limits,
+                             const std::function<void()>& while_waiting = {});
 
 /// The child's side: reads the claim's row (JSON) from fd 4 and the session from fd 3,
 /// prints the score row as JSON on stdout. Exit 0 scored, 2 refused, 4 out of memory.

@@ -37,6 +37,7 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
     s.scored = r.text(i, 7) == "t";
     s.ended_unscored = r.text(i, 9) == "t" && !s.scored;
     s.last_error = r.text(i, 10);
+    s.pending = !s.scored && r.text(i, 9) == "f";
     all.push_back(std::move(s));
   }
   return all;
@@ -47,6 +48,14 @@ std::string session_file(Connection& c, long long id) {
                         {Param::text(std::to_string(id))}, true);
   if (r.rows() != 1) throw StoreError("store: session " + std::to_string(id) + " is gone", false);
   return r.bytes(0, 0);
+}
+
+std::string stored_result(Connection& c, long long id) {
+  const auto r = c.exec("read a stored score",
+                        "SELECT result::text FROM scores WHERE session_id = $1::bigint ORDER BY scored_at DESC, id DESC "
+                        "LIMIT 1",
+                        {Param::text(std::to_string(id))});
+  return r.rows() == 1 ? r.text(0, 0) : std::string();
 }
 
 std::vector<StationCount> my_session_counts(Connection& c) {

@@ -355,7 +355,7 @@ const std::vector<const char*>& migrations() {
   // Each version is one transaction made of parts, kept apart for reading.
   static const std::string v1 = std::string(kV1Tables) + kV1Push + kV1Roles;
   static const std::string v2 = std::string(kV2Owner) + kV2Checks + kV2Push;
-  static const std::vector<const char*> kAll{v1.c_str(), v2.c_str()};
+  static const std::vector<const char*> kAll{v1.c_str(), v2.c_str(), migration_v3().c_str()};
   return kAll;
 }
 

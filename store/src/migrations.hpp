@@ -8,4 +8,7 @@ namespace palpa::store {
 
 const std::vector<const char*>& migrations();
 
+/// Version 3 (migrations_v3.cpp).
+const std::string& migration_v3();
+
 }  // namespace palpa::store

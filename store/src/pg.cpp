@@ -82,8 +82,23 @@ Connection::Connection(const std::string& conninfo)
 
 std::string Connection::target() const { return target_of(c_.get()); }
 
+namespace {
+
+// Errors that pass with time, as a broken connection does: a lock or statement timeout
+// (another login held a row), a login's quota, a server short of memory or connections,
+// a serialization failure or deadlock. The session waits in the outbox and is sent again.
+bool passes_with_time(const PGresult* r) {
+  const char* state = r ? PQresultErrorField(r, PG_DIAG_SQLSTATE) : nullptr;
+  if (state == nullptr) return false;
+  const std::string_view code(state);
+  return code == "55P03" || code == "57014" || code == "53400" || code == "53300" || code == "53200" ||
+         code == "40001" || code == "40P01" || code == "25P03" || code == "57P01";
+}
+
+}  // namespace
+
 void Connection::fail(std::string_view what, const PGresult* r) const {
-  const bool broken = PQstatus(c_.get()) != CONNECTION_OK;
+  const bool broken = PQstatus(c_.get()) != CONNECTION_OK || passes_with_time(r);
   // The server's primary message alone: its CONTEXT lines name functions and statements
   // that are the store's business, not the caller's.
   const char* primary = r ? PQresultErrorField(r, PG_DIAG_MESSAGE_PRIMARY) : nullptr;

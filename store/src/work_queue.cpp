@@ -25,7 +25,8 @@ void retire_poison(Connection& c) {
   c.exec("retire sessions that kill their scorer",
          "UPDATE work_queue w SET done = true, lease_owner = NULL, lease_expires = NULL, "
          "last_error = 'retired after ' || w.attempts || ' attempts: ' || "
-         "coalesce(w.last_error, 'each claim ended without a score (the worker was killed)') "
+         "coalesce(w.last_error, 'each claim ended without a score: its worker stopped or lost the server "
+         "while scoring (the lease ran out)') "
          "WHERE NOT w.done AND w.attempts >= (SELECT max_score_attempts FROM store_settings) "
          "AND (w.lease_expires IS NULL OR w.lease_expires < now())");
 }
@@ -63,18 +64,30 @@ std::string describe(const Claim& claim) {
 
 std::optional<Claim> claim_next(Connection& c, const std::string& owner, double lease_s) {
   retire_poison(c);
-  Transaction t(c);
-  const auto claimed = c.exec(
-      "claim a session",
-      "UPDATE work_queue w SET lease_owner = $1, lease_expires = now() + make_interval(secs => $2::double precision), "
-      "attempts = w.attempts + 1 "
-      "WHERE w.session_id = (SELECT q.session_id FROM work_queue q WHERE NOT q.done "
-      "AND (q.lease_expires IS NULL OR q.lease_expires < now() OR q.lease_owner = $1) ORDER BY q.session_id "
-      "LIMIT 1 FOR UPDATE SKIP LOCKED) RETURNING w.session_id",
-      {Param::text(owner), Param::text(fmt::format("{}", lease_s))});
-  if (claimed.rows() == 0) return std::nullopt;
-  t.commit();
-  return read_claim(c, claimed.integer(0, 0));
+  const auto claimed = c.exec("claim a session", "SELECT public.palpa_claim_session($1, $2::double precision)",
+                              {Param::text(owner), Param::text(fmt::format("{}", lease_s))});
+  if (claimed.is_null(0, 0)) return std::nullopt;
+  const long long id = claimed.integer(0, 0);
+  try {
+    return read_claim(c, id);
+  } catch (const StoreError& e) {
+    if (e.unreachable()) throw;
+    // A row this worker cannot read (the server ran out of memory making its text): given
+    // back with the reason, so that it is retired after max_score_attempts claims.
+    Claim stub;
+    stub.id = id;
+    release_claim(c, stub, owner, e.what());
+    throw ClaimError(fmt::format("store: session row {}: {}", id, e.what()));
+  }
+}
+
+bool renew_claim(Connection& c, const Claim& claim, const std::string& owner, double lease_s) {
+  const auto r = c.exec("renew the lease",
+                        "UPDATE work_queue SET lease_expires = now() + make_interval(secs => $3::double precision) "
+                        "WHERE session_id = $1::bigint AND lease_owner = $2 AND NOT done RETURNING session_id",
+                        {Param::text(std::to_string(claim.id)), Param::text(owner),
+                         Param::text(fmt::format("{}", lease_s))});
+  return r.rows() == 1;
 }
 
 long long pending_count(Connection& c) {

@@ -207,10 +207,12 @@ SELECT * FROM public.palpa_push_session('room-1', '%s', 'mallory', '', '{}'::jso
 
         self.assertEqual(function("proowner::regrole"), "palpa_owner")
         self.assertEqual(function("prosecdef"), "t")
-        self.assertEqual(function("array_to_string(proconfig, ';')"), "search_path=pg_catalog, public, pg_temp")
+        self.assertEqual(function("array_to_string(proconfig, ';')"),
+                         "search_path=pg_catalog, public, pg_temp;lock_timeout=5s")
         acl = function("proacl::text")
         self.assertEqual(sorted(a.split("=")[0] for a in acl.strip("{}").split(",")), ["palpa_owner", "palpa_station"])
-        for helper in ("palpa_check_text", "palpa_check_session"):
+        for helper in ("palpa_check_text", "palpa_check_session", "palpa_check_name", "palpa_check_document",
+                       "palpa_check_quota"):
             self.assertEqual(self.pg.sql("SELECT proowner::regrole || ' ' || proacl::text FROM pg_proc "
                                          "WHERE proname = '%s'" % helper, self.DB), "palpa_owner {palpa_owner=X/palpa_owner}")
         self.assertEqual(self.pg.sql("SELECT rolcanlogin || ' ' || rolcreaterole || ' ' || rolsuper FROM pg_roles "
@@ -534,7 +536,7 @@ class MigratedStore(HostileStation):
         res = cls.pg.psql_stdin("\n".join(rows), cls.DB)
         assert res.returncode == 0, res.stderr
         res = run_cli("store", "init", cls.pg.url(cls.DB))
-        assert res.returncode == 0 and "schema version 2 (was 1)" in res.stdout, res.stdout + res.stderr
+        assert res.returncode == 0 and "schema version 3 (was 1)" in res.stdout, res.stdout + res.stderr
 
     def test_the_migration_rekeys_cases_and_keeps_the_data(self):
         ids = ", ".join(literal(i) for i in ["ab" * 16] + EVIL_IDS[:5])

@@ -45,14 +45,15 @@ class Schema(unittest.TestCase):
         return run(self.pg, "store", "push", session, "--store", self.pg.url("palpa", user), "--station", station,
                    "--outbox", self.outbox)
 
-    def test_init_creates_version_2_and_is_idempotent(self):
-        self.assertIn("schema version 2 (was 0)", self.first_init)
+    def test_init_creates_version_3_and_is_idempotent(self):
+        self.assertIn("schema version 3 (was 0)", self.first_init)
         again = run(self.pg, "store", "init", self.pg.url("palpa"))
         self.assertEqual(again.returncode, 0, again.stderr)
         self.assertIn("already up to date", again.stdout)
-        self.assertEqual(self.pg.sql("SELECT version FROM palpa_schema ORDER BY 1", "palpa").split(), ["1", "2"])
+        self.assertEqual(self.pg.sql("SELECT version FROM palpa_schema ORDER BY 1", "palpa").split(), ["1", "2", "3"])
         tables = set(self.pg.sql("SELECT tablename FROM pg_tables WHERE schemaname = 'public'", "palpa").split())
-        self.assertTrue({"stations", "trainees", "cases", "sessions", "scores", "work_queue"} <= tables, tables)
+        self.assertTrue({"stations", "trainees", "cases", "sessions", "scores", "work_queue", "enrolments",
+                         "claim_turns"} <= tables, tables)
         roles = self.pg.sql("SELECT rolname || ':' || rolcanlogin FROM pg_roles WHERE rolname LIKE 'palpa\\_%' "
                             "AND rolname <> 'palpa_admin' ORDER BY 1")
         self.assertEqual(roles.split(), ["palpa_coordinator:false", "palpa_owner:false", "palpa_station:false",
@@ -65,7 +66,7 @@ class Schema(unittest.TestCase):
         res = run(self.pg, "store", "init", self.pg.url("newer"))
         self.assertEqual(res.returncode, 1)
         self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
-        self.assertIn("schema version 99, newer than this Palpa knows (2)", res.stderr)
+        self.assertIn("schema version 99, newer than this Palpa knows (3)", res.stderr)
         self.assertEqual(self.pg.sql("SELECT max(version) FROM palpa_schema", "newer"), "99")
 
     def test_a_station_adds_sessions_and_sees_only_its_own(self):

@@ -12,4 +12,5 @@ target_sources(palpa_core PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/verdict.cpp
   ${CMAKE_CURRENT_LIST_DIR}/score.cpp
   ${CMAKE_CURRENT_LIST_DIR}/score_json.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/score_from_json.cpp
 )

@@ -138,6 +138,11 @@ Score score_stream(session::SampleStream& stream, const std::string& source, con
 /// `with_maps` adds the per-cell maps (large).
 nlohmann::json to_json(const Score& score, bool with_maps = false);
 
+/// The score `to_json` wrote (with or without maps), read back; the thresholds are not in
+/// the JSON's exact form, so the caller gives them (thresholds_from_case of the session's
+/// case). Throws std::invalid_argument "stored score: ..." for JSON that is not one.
+Score score_from_json(const nlohmann::json& json, const Thresholds& thresholds);
+
 /// A short text score card for a terminal (one metric per line, gates with PASS/FAIL).
 std::string summary_text(const Score& score);
 

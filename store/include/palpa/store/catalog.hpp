@@ -21,6 +21,7 @@ struct StoredSession {
   std::string session_id, station, trainee, file_name, sha256, started_at, mode;
   bool scored = false;          ///< has a score row (any scorer version)
   bool ended_unscored = false;  ///< the workers ended it without a score: refused or retired
+  bool pending = false;         ///< in the work queue, not scored yet
   std::string last_error;       ///< why, as the worker wrote it
 };
 
@@ -29,6 +30,10 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& fil
 
 /// The stored bytes of session `id` (sessions.id).
 std::string session_file(Connection& c, long long id);
+
+/// The newest score a worker wrote for session `id` (scores.result, JSON text); empty when
+/// it has none. Reports take it instead of scoring the session again.
+std::string stored_result(Connection& c, long long id);
 
 /// Sessions uploaded by the connected login (station_sessions), by station name.
 struct StationCount {

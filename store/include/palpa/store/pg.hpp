@@ -13,8 +13,9 @@
 namespace palpa::store {
 
 /// Why a store operation failed. `unreachable` is true when the server could not be
-/// reached or the connection broke (a push then queues the session in the outbox); false
-/// for a refusal (permissions, a conflict, a bad value).
+/// reached, the connection broke, or the failure passes with time (a lock or statement
+/// timeout, a quota, a server out of memory or connections): a push then queues the
+/// session in the outbox. False for a refusal (permissions, a conflict, a bad value).
 class StoreError : public std::runtime_error {
  public:
   StoreError(const std::string& message, bool unreachable)

@@ -28,11 +28,24 @@ struct Claim {
 std::string describe(const Claim& claim);
 
 /// Claims the next unscored session for `owner` for `lease_s` seconds; nothing when no
-/// session is free to claim now. A session `owner` holds already is free to it: a worker
+/// session is free to claim now. Fair across station logins: the session comes from the
+/// login whose last claim is oldest (palpa_claim_session), the lowest id within it. A session `owner` holds already is free to it: a worker
 /// whose connection broke mid-session (a server restart) takes it up again on reconnecting
 /// instead of leaving it until its lease runs out. First retires the sessions claimed max_score_attempts
 /// times without a score (their scorers were killed: poison sessions), keeping the reason.
 std::optional<Claim> claim_next(Connection& c, const std::string& owner, double lease_s);
+
+/// A claimed row that could not be read (given back with the reason): the worker goes on
+/// with the next session.
+class ClaimError : public StoreError {
+ public:
+  explicit ClaimError(const std::string& message) : StoreError(message, false) {}
+};
+
+/// Extends the lease of a claim `owner` holds to `lease_s` seconds from now: a worker
+/// renews it while its scorer runs, so a lease never runs out under a live worker;
+/// false when the lease was lost.
+bool renew_claim(Connection& c, const Claim& claim, const std::string& owner, double lease_s);
 
 /// Sessions not scored yet (claimed or not).
 long long pending_count(Connection& c);
