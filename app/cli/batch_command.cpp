@@ -330,7 +330,10 @@ std::vector<const Scored*> curve_attempts(const std::vector<Scored>& scored, con
                                           report::LeftOut& left_out) {
   std::vector<const Scored*> attempts;
   for (const auto& s : scored) {
-    if (s.header.mode != "trainee" && !o.all_modes) {
+    if (const auto row = o.row_of.find(s.header.file); row != o.row_of.end() && !row->second.enrolled) {
+      left_out.unenrolled[s.header.trainee].insert(s.header.station);
+      ++left_out.unenrolled_sessions;
+    } else if (s.header.mode != "trainee" && !o.all_modes) {
       ++left_out.by_mode[s.header.mode];
     } else if (s.score.abandoned && !o.include_abandoned) {
       ++left_out.abandoned;
@@ -426,6 +429,9 @@ void write_cohort(const fs::path& out, const std::vector<Scored>& scored,
   page.skipped = skipped;
   page.selection = o.filter.describe();
   page.notes = report::left_out_notes(left_out);
+  std::map<std::string, std::set<std::string>> stations;
+  for (const Scored* a : attempts) stations[a->header.trainee].insert(a->header.station);
+  for (auto& note : report::several_station_notes(stations)) page.notes.push_back(std::move(note));
   if (!o.pending.empty()) {
     page.notes.push_back(fmt::format("{} stored session{} not scored by a worker yet (pending): not in this report; "
                                      "they are scored by palpa-cli batch --store URL --worker",

@@ -31,6 +31,7 @@ struct StoreBatchOptions {
 /// metadata say otherwise is not reported (it was forged after the server's checks).
 struct StoredRow {
   std::string session_id, trainee, mode;
+  bool enrolled = true;  ///< pushed by a station the trainee is enrolled at (else flagged, not in curves)
 };
 
 /// What came down from the store for the folder batch: the files, the station that pushed

@@ -1,6 +1,7 @@
-// palpa-cli store init|push|status: the centre store on PostgreSQL (docs/centre.md).
+// palpa-cli store init|push|status|enrol: the centre store on PostgreSQL (docs/centre.md).
 // init creates or migrates the schema; push uploads finished sessions, queueing them in the
-// station's outbox when the server cannot be reached; status lists what waits there.
+// station's outbox when the server cannot be reached; status lists what waits there; enrol
+// says which stations may push for a trainee.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -30,6 +31,8 @@ struct StoreOptions {
   std::vector<std::string> sessions;
   std::string store, station, outbox;
   bool outbox_only = false;
+  std::vector<std::string> trainees;  ///< enrol
+  bool remove = false;                ///< enrol: end the enrolments
   int schema_version = 0;  ///< init: stop at this version (0: the newest)
 };
 
@@ -218,6 +221,33 @@ int run_status(const StoreOptions& o) {
   }
 }
 
+int run_enrol(const StoreOptions& o) {
+  if (o.store.empty() || o.station.empty()) {
+    print_error("store enrol: give --store URL (a coordinator's login) and --station NAME");
+    return kBadInput;
+  }
+  int code = kOk;
+  try {
+    store::Connection c(o.store);
+    store::check_schema(c);
+    for (const auto& trainee : o.trainees) {
+      try {
+        const bool changed = store::enrol(c, trainee, o.station, !o.remove);
+        say(fmt::format("{}: trainee {} at station {}{}", o.remove ? "not enrolled" : "enrolled", trainee, o.station,
+                        changed ? "" : " (already so)"));
+      } catch (const store::StoreError& e) {
+        if (e.unreachable()) throw;
+        print_error(e.what());
+        code = kBadInput;
+      }
+    }
+  } catch (const store::StoreError& e) {
+    print_error(e.what());
+    return kFailure;
+  }
+  return code;
+}
+
 void add_station_options(CLI::App* app, StoreOptions& o) {
   app->add_option("--store", o.store,
                   "libpq connection string or URI (passwords: ~/.pgpass or a service file, never here); default "
@@ -232,7 +262,7 @@ void add_station_options(CLI::App* app, StoreOptions& o) {
 
 Command add_store_command(CLI::App& parent) {
   auto o = std::make_shared<StoreOptions>();
-  auto* app = parent.add_subcommand("store", "The centre store on PostgreSQL (docs/centre.md): init, push, status.");
+  auto* app = parent.add_subcommand("store", "The centre store on PostgreSQL (docs/centre.md): init, push, status, enrol.");
   app->require_subcommand(1);
   auto* init = app->add_subcommand("init", "Create or migrate the store's schema and its roles (as the database owner).");
   init->add_option("URL", o->url, "libpq connection string or URI of the database")->required();
@@ -247,11 +277,21 @@ Command add_store_command(CLI::App& parent) {
   add_station_options(push, *o);
   auto* status = app->add_subcommand("status", "List the outbox and, when the store is reachable, this login's uploads.");
   add_station_options(status, *o);
+  auto* enrol = app->add_subcommand(
+      "enrol", "Enrol trainees at a station (a coordinator's login): that station's pushes for them count in the "
+               "learning curves; a push from a station a trainee is not enrolled at is flagged, or refused when "
+               "store_settings.enrolment is 'refuse'. A new trainee is enrolled at the station that first pushes "
+               "for them.");
+  enrol->add_option("TRAINEE", o->trainees, "trainee ids, as in the session files")->required();
+  enrol->add_option("--station", o->station, "the station's name")->required();
+  enrol->add_option("--store", o->store, "libpq connection string or URI, as a palpa_coordinator login")->required();
+  enrol->add_flag("--remove", o->remove, "end these enrolments instead");
   // The scoring child of batch --store --worker (isolated_score.hpp); not for people.
   auto* score_claim = app->add_subcommand("score-claim", "internal: a worker's scoring child process");
   score_claim->group("");
-  return {app, [o, init, push, score_claim] {
+  return {app, [o, init, push, enrol, score_claim] {
             if (score_claim->parsed()) return run_score_child();
+            if (enrol->parsed()) return run_enrol(*o);
             if (init->parsed()) return run_init(*o);
             if (push->parsed()) return run_push(*o);
             return run_status(*o);

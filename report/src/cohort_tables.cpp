@@ -109,6 +109,38 @@ std::vector<std::string> left_out_notes(const LeftOut& l) {
     notes.push_back(fmt::format("{} {} outside the selection ({}) and in no output; run without {} to include them.",
                                 l.filtered, l.filtered == 1 ? "session is" : "sessions are", l.filter,
                                 l.filter_options));
+  if (l.unenrolled_sessions > 0) {
+    std::string who;
+    for (const auto& [trainee, stations] : l.unenrolled) {
+      for (const auto& station : stations) {
+        who += fmt::format("{}trainee {} from station {}", who.empty() ? "" : "; ", printable(trainee, 80),
+                           printable(station, 64));
+      }
+    }
+    notes.push_back(fmt::format("Flagged: {} {} pushed by a station the trainee is not enrolled at and {} not in the "
+                                "learning curves ({}); a coordinator enrols a trainee at a station with palpa-cli "
+                                "store enrol.",
+                                l.unenrolled_sessions, l.unenrolled_sessions == 1 ? "session was" : "sessions were",
+                                l.unenrolled_sessions == 1 ? "is" : "are", who));
+  }
+  return notes;
+}
+
+std::vector<std::string> several_station_notes(const std::map<std::string, std::set<std::string>>& stations) {
+  std::vector<std::string> notes;
+  for (const auto& [trainee, seen] : stations) {
+    std::string names;
+    std::size_t n = 0;
+    for (const auto& s : seen) {
+      if (s.empty()) continue;
+      names += fmt::format("{}{}", names.empty() ? "" : ", ", printable(s, 64));
+      ++n;
+    }
+    if (n < 2) continue;
+    notes.push_back(fmt::format("Flagged: trainee {} has attempts from {} stations ({}): check that each attempt is "
+                                "theirs (the station of every attempt is in trainees/*.csv).",
+                                printable(trainee, 80), n, names));
+  }
   return notes;
 }
 

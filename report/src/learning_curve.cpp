@@ -82,18 +82,19 @@ Attempt attempt_of(const SessionHeader& header, const score::Score& score) {
 std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum, const Proficiency& proficiency) {
   std::string csv =
       "attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
-      "score_100,proficient,verdict\n";
+      "score_100,proficient,verdict,station\n";
   auto share = [](double v) { return csv_number(v, CsvUnit::Fraction); };
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
     csv += fmt::format("{},{},{},{},{},{},{},{},{},", i + 1, csv_text(a.header.started_at), csv_text(a.header.file),
                        csv_text(a.header.id), share(a.score), a.passed ? "1" : "0", share(a.sensitivity),
                        share(a.coverage), share(a.deep_coverage));
-    csv += fmt::format("{},{},{},{},{}\n", i < cusum.value.size() ? csv_number(cusum.value[i], CsvUnit::Cusum) : "",
+    csv += fmt::format("{},{},{},{},{},{}\n", i < cusum.value.size() ? csv_number(cusum.value[i], CsvUnit::Cusum) : "",
                        i < cusum.signal.size() ? to_string(cusum.signal[i]) : std::string_view(),
                        csv_number(100.0 * a.score, CsvUnit::Score100),
                        i < proficiency.proficient.size() ? (proficiency.proficient[i] ? "1" : "0") : "",
-                       i < proficiency.verdict.size() ? csv_text(proficiency.verdict[i]) : std::string());
+                       i < proficiency.verdict.size() ? csv_text(proficiency.verdict[i]) : std::string(),
+                       csv_text(a.header.station));
   }
   return csv;
 }
@@ -176,48 +177,44 @@ cv::Mat learning_curve_plot(const std::string& trainee, const std::vector<Attemp
 
 namespace {
 
-std::string hash8(std::string_view text) {  // 8 hex digits of the text's SHA-1
+// 16 hex digits (64 bits) of the text's SHA-1: two names meet by chance about once in
+// 4e9 pairs squared, and no one can pick a name that meets a given one.
+std::string hash16(std::string_view text) {
   static constexpr char kHex[] = "0123456789abcdef";
   const auto digest = sha1(text);
   std::string hex;
-  for (std::size_t i = 0; i < 4; ++i) {
+  for (std::size_t i = 0; i < 8; ++i) {
     hex += kHex[digest[i] >> 4];
     hex += kHex[digest[i] & 15];
   }
   return hex;
 }
 
-}  // namespace
-
-std::string trainee_file_stem(std::string_view trainee) {
+// Letters, digits, '.', '_' and '-' kept, anything else '_', no leading '.', at most 48.
+std::string readable_prefix(std::string_view text) {
   std::string stem;
-  for (const char c : trainee) {
+  for (const char c : text) {
     const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
                       c == '_' || c == '-';
     stem += keep ? c : '_';
   }
   while (!stem.empty() && stem.front() == '.') stem.front() = '_';
-  if (stem.size() > 64) stem.resize(64);
-  if (stem != trainee || stem.empty()) {
-    stem += stem.empty() ? "trainee-" : "-";
-    stem += hash8(trainee);
-  }
+  if (stem.size() > 48) stem.resize(48);
   return stem;
+}
+
+}  // namespace
+
+std::string trainee_file_stem(std::string_view trainee) {
+  const auto prefix = readable_prefix(trainee);
+  return (prefix.empty() ? std::string("trainee") : prefix) + "-" + hash16(trainee);
 }
 
 std::string case_file_stem(std::string_view case_id) {
   constexpr std::string_view kPrefix = "urn:palpa:case:";
-  if (case_id.substr(0, kPrefix.size()) == kPrefix) {
-    const auto rest = case_id.substr(kPrefix.size());
-    if (!rest.empty() && trainee_file_stem(rest) == rest) return std::string(rest);
-  }
-  // Any other id always carries its hash, so that "default" never meets urn:palpa:case:default.
-  std::string stem = trainee_file_stem(case_id);
-  if (stem == case_id) {
-    stem += '-';
-    stem += hash8(case_id);
-  }
-  return stem;
+  const auto readable = case_id.substr(0, kPrefix.size()) == kPrefix ? case_id.substr(kPrefix.size()) : case_id;
+  const auto prefix = readable_prefix(readable);
+  return (prefix.empty() ? std::string("case") : prefix) + "-" + hash16(case_id);
 }
 
 }  // namespace palpa::report

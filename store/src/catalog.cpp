@@ -16,7 +16,7 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
       "SELECT s.id, s.session_id, s.station, t.name, s.file_name, s.sha256, "
       "to_char(s.started_at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'), "
       "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id), s.mode, "
-      "coalesce(w.done, false), coalesce(w.last_error, '') "
+      "coalesce(w.done, false), coalesce(w.last_error, ''), s.enrolled "
       "FROM sessions s JOIN trainees t ON t.id = s.trainee_id LEFT JOIN work_queue w ON w.session_id = s.id "
       "WHERE ($1::double precision IS NULL OR s.started_at >= to_timestamp($1::double precision)) "
       "AND ($2::double precision IS NULL OR s.started_at < to_timestamp($2::double precision)) "
@@ -38,6 +38,7 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
     s.ended_unscored = r.text(i, 9) == "t" && !s.scored;
     s.last_error = r.text(i, 10);
     s.pending = !s.scored && r.text(i, 9) == "f";
+    s.enrolled = r.text(i, 11) == "t";
     all.push_back(std::move(s));
   }
   return all;
@@ -56,6 +57,12 @@ std::string stored_result(Connection& c, long long id) {
                         "LIMIT 1",
                         {Param::text(std::to_string(id))});
   return r.rows() == 1 ? r.text(0, 0) : std::string();
+}
+
+bool enrol(Connection& c, const std::string& trainee, const std::string& station, bool enrolled) {
+  const auto r = c.exec("enrol a trainee", "SELECT public.palpa_enrol($1, $2, $3::boolean)",
+                        {Param::text(trainee), Param::text(station), Param::text(enrolled ? "true" : "false")});
+  return r.text(0, 0) == "t";
 }
 
 std::vector<StationCount> my_session_counts(Connection& c) {

@@ -48,7 +48,6 @@ UPDATE public.work_queue w SET done = true, lease_owner = NULL, lease_expires = 
   last_error = 'refused: the start date is not a finite date'
   FROM public.sessions s WHERE s.id = w.session_id AND NOT w.done AND NOT pg_catalog.isfinite(s.started_at);
 GRANT SELECT ON public.enrolments TO palpa_worker, palpa_coordinator;
-GRANT INSERT, DELETE ON public.enrolments TO palpa_coordinator;
 GRANT SELECT ON public.claim_turns TO palpa_worker, palpa_coordinator;
 )sql";
 
@@ -307,10 +306,40 @@ REVOKE ALL ON FUNCTION public.palpa_claim_session(text, double precision) FROM P
 GRANT EXECUTE ON FUNCTION public.palpa_claim_session(text, double precision) TO palpa_worker;
 )sql";
 
+// A coordinator's enrolment: trainee (made if new) at a station that exists; p_enrol false
+// ends it. Returns whether anything changed.
+constexpr const char* kV3Enrol = R"sql(
+CREATE FUNCTION public.palpa_enrol(p_trainee text, p_station text, p_enrol boolean)
+  RETURNS boolean LANGUAGE plpgsql SECURITY DEFINER SET search_path = pg_catalog, public, pg_temp
+  SET lock_timeout = '5s' AS $fn$
+DECLARE
+  v_trainee bigint;
+  v_rows integer;
+BEGIN
+  PERFORM public.palpa_check_name('trainee', p_trainee, 128);
+  IF NOT EXISTS (SELECT 1 FROM public.stations st WHERE st.name = p_station) THEN
+    RAISE EXCEPTION 'field station: no station "%" has pushed or been registered', p_station USING ERRCODE = '22023';
+  END IF;
+  INSERT INTO public.trainees(name) VALUES (p_trainee) ON CONFLICT (name) DO NOTHING;
+  SELECT t.id INTO v_trainee FROM public.trainees t WHERE t.name = p_trainee;
+  IF p_enrol THEN
+    INSERT INTO public.enrolments(trainee_id, station) VALUES (v_trainee, p_station) ON CONFLICT DO NOTHING;
+  ELSE
+    DELETE FROM public.enrolments e WHERE e.trainee_id = v_trainee AND e.station = p_station;
+  END IF;
+  GET DIAGNOSTICS v_rows = ROW_COUNT;
+  RETURN v_rows > 0;
+END
+$fn$;
+ALTER FUNCTION public.palpa_enrol(text, text, boolean) OWNER TO palpa_owner;
+REVOKE ALL ON FUNCTION public.palpa_enrol(text, text, boolean) FROM PUBLIC;
+GRANT EXECUTE ON FUNCTION public.palpa_enrol(text, text, boolean) TO palpa_coordinator;
+)sql";
+
 }  // namespace
 
 const std::string& migration_v3() {
-  static const std::string v3 = std::string(kV3Tables) + kV3Names + kV3Checks + kV3Push + kV3Claim;
+  static const std::string v3 = std::string(kV3Tables) + kV3Names + kV3Checks + kV3Push + kV3Claim + kV3Enrol;
   return v3;
 }
 

@@ -10,6 +10,7 @@ sub/bob-1 of "Bob O'Neil/<x>"), a corrupt and a truncated .palpa file, and notes
 """
 import argparse
 import csv
+import hashlib
 import json
 import math
 import os
@@ -30,7 +31,15 @@ HEADER = ("file,session_id,trainee,case,started_at,passed,score,sensitivity,fals
           "localization_error_mm,coverage,deep_coverage,duration_s,contact_time_s,peak_force_n,"
           "safe,palpate_search_ratio,pattern,light_s,medium_s,deep_s,complete,samples,outcome,mode,case_file,case_id,score_100,station")
 TRAINEE_HEADER = ("attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
-                  "score_100,proficient,verdict")
+                  "score_100,proficient,verdict,station")
+
+
+def stem(name):
+    """A trainee's file stem, by hand: a readable prefix, "-" and 16 hex digits of SHA-1."""
+    prefix = re.sub(r"[^A-Za-z0-9._-]", "_", name)[:48]
+    if prefix.startswith("."):
+        prefix = "_" + prefix[1:]
+    return (prefix or "trainee") + "-" + hashlib.sha1(name.encode()).hexdigest()[:16]
 # CUSUM of failures, p0 0.1, p1 0.3, alpha = beta = 0.1: s = ln(9/7) / ln(27/7), h = ln 9 / ln(27/7).
 CUSUM_S = math.log(9 / 7) / math.log(27 / 7)
 CUSUM_H = math.log(9) / math.log(27 / 7)
@@ -116,20 +125,20 @@ class Batch(unittest.TestCase):
         for r in skipped:
             self.assertIn(os.path.basename(r["file"]), r["error"])
 
-        alice = read_csv(os.path.join(out, "trainees", "alice.csv"))
+        alice = read_csv(os.path.join(out, "trainees", stem("alice") + ".csv"))
         self.assertEqual([r["attempt"] for r in alice], ["1", "2", "3"])
         self.assertEqual([r["session_id"] for r in alice], ["a0a0a0a0a0a0a0a0", "a1a1a1a1a1a1a1a1", "a2a2a2a2a2a2a2a2"])
-        with open(os.path.join(out, "trainees", "alice.csv")) as fh:
+        with open(os.path.join(out, "trainees", stem("alice") + ".csv")) as fh:
             self.assertEqual(fh.readline().rstrip("\r\n"), TRAINEE_HEADER)
         # The CUSUM, to 0.01 as the CSV writes it.
         expected = restarted_cusum([r["passed"] == "1" for r in alice])
         self.assertEqual([r["cusum"] for r in alice], [cell(v, 2) for v in expected])
-        self.assertTrue(os.path.getsize(os.path.join(out, "trainees", "alice.png")) > 1000)
+        self.assertTrue(os.path.getsize(os.path.join(out, "trainees", stem("alice") + ".png")) > 1000)
         # The hostile trainee id became a safe file name of its own.
         names = sorted(os.listdir(os.path.join(out, "trainees")))
         self.assertEqual(len(names), 4, names)
         bob = [n for n in names if n.startswith("Bob") and n.endswith(".csv")]
-        self.assertEqual(len(bob), 1, names)
+        self.assertEqual(bob, [stem("Bob O'Neil/<x>") + ".csv"], names)
         for ch in "/<>' ":
             self.assertNotIn(ch, bob[0])
         self.assertEqual(len(read_csv(os.path.join(out, "trainees", bob[0]))), 1)
@@ -234,16 +243,16 @@ class Batch(unittest.TestCase):
             self.assertEqual(r["case_file"], "flat-5x5.json")
             self.assertTrue(r["case_id"].startswith("urn:palpa:case:"), r["case_id"])
         # Learning curves: trainee exercises only, the abandoned attempt left out.
-        alice = read_csv(os.path.join(out, "trainees", "alice.csv"))
+        alice = read_csv(os.path.join(out, "trainees", stem("alice") + ".csv"))
         self.assertEqual([r["session_id"] for r in alice], ["a0a0a0a0a0a0a0a0", "a1a1a1a1a1a1a1a1"])
-        self.assertFalse(os.path.exists(os.path.join(out, "trainees", "carol.csv")))
+        self.assertFalse(os.path.exists(os.path.join(out, "trainees", stem("carol") + ".csv")))
         # On request they count too.
         out2 = os.path.join(self.tmp.name, "out2")
         res = self.batch(*inputs, "--out", out2, "--include-abandoned", "--all-modes")
         self.assertEqual(res.returncode, 0, res.stderr)
-        alice = read_csv(os.path.join(out2, "trainees", "alice.csv"))
+        alice = read_csv(os.path.join(out2, "trainees", stem("alice") + ".csv"))
         self.assertEqual(len(alice), 3)
-        self.assertEqual(len(read_csv(os.path.join(out2, "trainees", "carol.csv"))), 1)
+        self.assertEqual(len(read_csv(os.path.join(out2, "trainees", stem("carol") + ".csv"))), 1)
         # palpa-cli score says so too, and it is not a failed exam.
         res = run(["score", inputs[2], "--json"])
         self.assertEqual(res.returncode, 0, res.stderr)
@@ -301,15 +310,15 @@ class Cohort(unittest.TestCase):
         self.attempts("fay", "PPPPFPP", 1)      # proficient at 3-4, then a failure and two passes
         res, out = self.batch()
         self.assertEqual(res.returncode, 0, res.stderr)
-        dana = read_csv(os.path.join(out, "trainees", "dana.csv"))
+        dana = read_csv(os.path.join(out, "trainees", stem("dana") + ".csv"))
         self.assertEqual([r["proficient"] for r in dana], ["0"] * 8 + ["1"])
         self.assertEqual(dana[-1]["verdict"], "proficient since attempt 9")
         self.assertEqual(dana[7]["verdict"], "not yet: 2 of the last 5 passed")
         self.assertEqual([r["cusum"] for r in dana], [cell(v, 2) for v in restarted_cusum([False] * 6 + [True] * 3)])
         self.assertEqual([r["signal"] for r in dana][:6], ["", "unacceptable"] * 3)
-        erin = read_csv(os.path.join(out, "trainees", "erin.csv"))
+        erin = read_csv(os.path.join(out, "trainees", stem("erin") + ".csv"))
         self.assertEqual(erin[-1]["verdict"], "proficient since attempt 3")
-        fay = read_csv(os.path.join(out, "trainees", "fay.csv"))
+        fay = read_csv(os.path.join(out, "trainees", stem("fay") + ".csv"))
         self.assertEqual(fay[-1]["proficient"], "0")
         self.assertEqual(fay[-1]["verdict"],
                          "proficient at attempts 3-4; failed attempt 5: not yet again (4 of the last 5 passed)")
@@ -336,7 +345,7 @@ class Cohort(unittest.TestCase):
         self.assertEqual(row["localization_error_mm"], cell(mean, 1))
         for column in ("light_s", "medium_s", "deep_s"):
             self.assertEqual(row[column], cell(report["pressure"][column], 2), column)
-        curve = read_csv(os.path.join(out, "trainees", "dana.csv"))
+        curve = read_csv(os.path.join(out, "trainees", stem("dana") + ".csv"))
         self.assertEqual(curve[1]["score_100"], row["score_100"])
         self.assertEqual(curve[1]["score"], row["score"])
 
@@ -362,7 +371,7 @@ class Cohort(unittest.TestCase):
         case_id = [r for r in rows if r["trainee"] == "dana"][0]["case_id"]
         res, out = self.batch("--case", case_id, "--trainee", "dana", "--since", "2026-11-01", "--until", "2026-11-30")
         self.assertEqual(len(read_csv(os.path.join(out, "summary.csv"))), 5)
-        self.assertEqual(sorted(os.listdir(os.path.join(out, "trainees"))), ["dana.csv", "dana.png"])
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "trainees"))), [stem("dana") + ".csv", stem("dana") + ".png"])
         with open(os.path.join(out, "cohort.html")) as fh:
             self.assertIn("Covers sessions from 2026-11-01 to 2026-11-30, case %s, trainee dana." % case_id, fh.read())
 
@@ -496,16 +505,18 @@ class Coordinator(unittest.TestCase):
         self.assertIn("<h2>Stations</h2>", html)
         self.assertIn('<tr><td>north</td><td class="num">5</td>', html)
         # One curve per trainee and case, none mixing cases; the per-trainee files as before.
-        self.assertEqual(len(read_csv(os.path.join(out, "trainees", "ann.csv"))), 5)
-        self.assertEqual(sorted(os.listdir(os.path.join(out, "curves"))), ["ann", "ben"])
-        ann = {n: read_csv(os.path.join(out, "curves", "ann", n)) for n in os.listdir(os.path.join(out, "curves", "ann"))
-               if n.endswith(".csv")}
+        self.assertEqual(len(read_csv(os.path.join(out, "trainees", stem("ann") + ".csv"))), 5)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "curves"))), sorted([stem("ann"), stem("ben")]))
+        ann_folder = os.path.join(out, "curves", stem("ann"))
+        ann = {n: read_csv(os.path.join(ann_folder, n)) for n in os.listdir(ann_folder) if n.endswith(".csv")}
         self.assertEqual(sorted(len(v) for v in ann.values()), [2, 3])
         by_id = {r["session_id"]: r["case_id"] for r in rows}
         for attempts in ann.values():
             self.assertEqual(len({by_id[a["session_id"]] for a in attempts}), 1)
-        self.assertEqual(ann["case-a.csv"][-1]["verdict"], "proficient since attempt 3")
-        self.assertIn('href="curves/ann/case-a.png"', html)
+        case_a = [n for n in ann if n.startswith("case-a-")]
+        self.assertEqual(len(case_a), 1, sorted(ann))
+        self.assertEqual(ann[case_a[0]][-1]["verdict"], "proficient since attempt 3")
+        self.assertIn('href="curves/%s/%s.png"' % (stem("ann"), case_a[0][:-len(".csv")]), html)
         # --reports: every session's page linked, relative, and there.
         links = [h for h in re.findall(r'href="([^"]+)"', html) if h.startswith("sessions/")]
         self.assertEqual(len(links), 10)

@@ -133,17 +133,18 @@ TEST(LearningCurve, TraineeCsvHasOneRowPerAttempt) {
   s.score = 0.9;
   h.started_at = "2026-11-23T10:00:00Z";
   h.file = "b,c.palpa";
+  h.station = "room 2";
   attempts.push_back(attempt_of(h, s));
   const auto cusum = failure_cusum({false, true});
   const auto csv = trainee_csv(attempts, cusum, proficiency({false, true}));
   // cusum 1 - s = 0.8138 -> 0.81, then 1 - 2 s = 0.6277 -> 0.63; score 0.6125 -> 0.613, 61.3 of 100.
   const std::string expected =
       "attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,"
-      "score_100,proficient,verdict\n"
+      "score_100,proficient,verdict,station\n"
       "1,2026-11-22T16:40:00Z,sessions/alice-1.palpa,3f2a9c,0.613,0,0.500,0.400,0.100,0.81,,61.3,0,"
-      "not yet: 0 of 1 passed\n"
+      "not yet: 0 of 1 passed,\n"
       "2,2026-11-23T10:00:00Z,\"b,c.palpa\",3f2a9c,0.900,1,0.500,0.400,0.100,0.63,,90.0,0,"
-      "not yet: 1 of 2 passed\n";
+      "not yet: 1 of 2 passed,room 2\n";
   EXPECT_EQ(csv, expected);
   const auto image = learning_curve_plot("alice", attempts, cusum, proficiency({false, true}));
   EXPECT_EQ(image.cols, 900);
@@ -151,8 +152,15 @@ TEST(LearningCurve, TraineeCsvHasOneRowPerAttempt) {
 }
 
 TEST(LearningCurve, TraineeIdsBecomeSafeDistinctFileNames) {
-  EXPECT_EQ(trainee_file_stem("alice"), "alice");
-  EXPECT_EQ(trainee_file_stem("A.B_c-1"), "A.B_c-1");
+  // "alice" and 16 hex digits of SHA-1("alice") = 522b276a356bdf39013dfabea2cd43e141ecc9e8
+  EXPECT_EQ(trainee_file_stem("alice"), "alice-522b276a356bdf39");
+  EXPECT_EQ(trainee_file_stem("A.B_c-1").rfind("A.B_c-1-", 0), 0u);
+  // Names a station could pick to meet another's file: the sanitized form with the other's
+  // hash, or the same letters in another case.
+  const auto victim = trainee_file_stem("al ice");
+  EXPECT_NE(trainee_file_stem("al_ice-" + victim.substr(victim.size() - 16)), victim);
+  EXPECT_NE(trainee_file_stem("al_ice-" + victim.substr(victim.size() - 8)), victim);
+  EXPECT_NE(trainee_file_stem("Alice"), trainee_file_stem("alice"));
   const auto evil = trainee_file_stem("../../etc/passwd");
   EXPECT_EQ(evil.find('/'), std::string::npos);
   EXPECT_NE(evil.front(), '.');
@@ -160,7 +168,8 @@ TEST(LearningCurve, TraineeIdsBecomeSafeDistinctFileNames) {
   EXPECT_EQ(trainee_file_stem("a b").rfind("a_b-", 0), 0u);
   EXPECT_EQ(trainee_file_stem("a b"), trainee_file_stem("a b"));  // deterministic
   EXPECT_FALSE(trainee_file_stem("").empty());
-  EXPECT_LE(trainee_file_stem(std::string(300, 'x')).size(), 64u + 9u);
+  EXPECT_EQ(trainee_file_stem(std::string(300, 'x')).size(), 48u + 17u);
+  EXPECT_NE(trainee_file_stem(std::string(300, 'x')), trainee_file_stem(std::string(301, 'x')));
   EXPECT_EQ(trainee_file_stem("\xC3\xA9t\xC3\xA9").find_first_not_of(
                 "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-"),
             std::string::npos);
@@ -211,10 +220,13 @@ TEST(Cohort, AProficientTraineeIsSaidSoAndTheSelectionIsNamed) {
   EXPECT_NE(html.find("Covers sessions from 2026-11-01 to 2026-11-30, case default."), std::string::npos);
 }
 
-TEST(CaseFileStem, SlugIdsKeepTheirSlugOthersCarryAHash) {
-  EXPECT_EQ(case_file_stem("urn:palpa:case:default"), "default");
+TEST(CaseFileStem, SlugIdsKeepTheirSlugAndAllCarryAHash) {
+  EXPECT_EQ(case_file_stem("urn:palpa:case:default").rfind("default-", 0), 0u);
   EXPECT_NE(case_file_stem("default"), case_file_stem("urn:palpa:case:default"));  // never the same file
   EXPECT_EQ(case_file_stem("default").rfind("default-", 0), 0u);
+  // An id made to look like another's stem does not meet it.
+  const auto other = case_file_stem("default");
+  EXPECT_NE(case_file_stem("urn:palpa:case:" + other), other);
   EXPECT_NE(case_file_stem("urn:palpa:case:a b"), case_file_stem("urn:palpa:case:a_b"));
   EXPECT_EQ(case_file_stem("urn:palpa:case:../x").find('/'), std::string::npos);
   EXPECT_NE(case_file_stem("urn:palpa:case:../x").front(), '.');

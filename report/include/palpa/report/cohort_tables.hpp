@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <map>
 #include <set>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,7 +56,16 @@ struct LeftOut {
   std::size_t filtered = 0;       ///< sessions outside the filter: in no output at all
   std::string filter;             ///< SessionFilter::describe()
   std::string filter_options;     ///< the options that made it: "--since, --case"
+  /// Store reports: trainee -> the stations that pushed attempts for them without their
+  /// enrolment there (flagged, never in a curve: a station may not speak for another's trainee).
+  std::map<std::string, std::set<std::string>> unenrolled;
+  std::size_t unenrolled_sessions = 0;
 };
+
+/// One flag per trainee whose attempts in the curves came from more than one station:
+/// "Trainee T: attempts from 2 stations (room-1, room-2) ...". `station_of_attempts` maps
+/// each trainee to the stations of their attempts (empty station names are ignored).
+std::vector<std::string> several_station_notes(const std::map<std::string, std::set<std::string>>& stations);
 
 /// One sentence per reason, with the option that includes them: "12 scripted sessions are
 /// not in the learning curves: only trainee exercises count; give --all-modes to include

@@ -71,7 +71,7 @@ struct Attempt {
 Attempt attempt_of(const SessionHeader& header, const score::Score& score);
 
 /// attempt,started_at,file,session_id,score,passed,sensitivity,coverage,deep_coverage,cusum,signal,
-/// score_100,proficient,verdict (attempt from 1; score and shares 0..1; passed 1/0; cusum after
+/// score_100,proficient,verdict,station (attempt from 1; station: who recorded (or pushed) it; score and shares 0..1; passed 1/0; cusum after
 /// the attempt; signal acceptable/unacceptable or empty; proficient 1/0 and the verdict in
 /// words after the attempt). Numbers rounded per csv_number.hpp.
 std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum, const Proficiency& proficiency);
@@ -81,15 +81,15 @@ std::string trainee_csv(const std::vector<Attempt>& attempts, const Cusum& cusum
 cv::Mat learning_curve_plot(const std::string& trainee, const std::vector<Attempt>& attempts, const Cusum& cusum,
                             const Proficiency& proficiency, const CusumDesign& design = {});
 
-/// A file name stem for a trainee id: letters, digits, '.', '_' and '-' kept, anything else
-/// turned into '_', no leading '.', at most 64 characters; when that changed the id (or it
-/// was empty), "-" and 8 hex digits of the id's SHA-1 are appended so that different ids
-/// never share a file.
+/// A file name stem (and page anchor) for a trainee id: a readable prefix (letters, digits,
+/// '.', '_' and '-' kept, anything else turned into '_', no leading '.', at most 48
+/// characters), "-" and 16 hex digits of the exact id's SHA-1, always: two different ids
+/// never share a file, even when their prefixes agree ("al ice", "al_ice-1373f329") or
+/// differ only in case on a file system that ignores it ("Alice", "alice").
 std::string trainee_file_stem(std::string_view trainee);
 
-/// A file name stem for a case id: the slug of "urn:palpa:case:SLUG" as it is ("default");
-/// any other id as trainee_file_stem makes it, always with "-" and 8 hex digits of the id's
-/// SHA-1, so that two different ids never share a file.
+/// A file name stem for a case id: the same with the readable prefix taken from the slug of
+/// "urn:palpa:case:SLUG" ("default-" and the hash of the whole id).
 std::string case_file_stem(std::string_view case_id);
 
 }  // namespace palpa::report

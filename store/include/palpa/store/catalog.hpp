@@ -22,6 +22,7 @@ struct StoredSession {
   bool scored = false;          ///< has a score row (any scorer version)
   bool ended_unscored = false;  ///< the workers ended it without a score: refused or retired
   bool pending = false;         ///< in the work queue, not scored yet
+  bool enrolled = true;         ///< the trainee is enrolled at the station that pushed it
   std::string last_error;       ///< why, as the worker wrote it
 };
 
@@ -34,6 +35,11 @@ std::string session_file(Connection& c, long long id);
 /// The newest score a worker wrote for session `id` (scores.result, JSON text); empty when
 /// it has none. Reports take it instead of scoring the session again.
 std::string stored_result(Connection& c, long long id);
+
+/// Enrols `trainee` at `station` (or ends the enrolment): from then on that station's
+/// pushes for the trainee count in the learning curves (docs/centre.md, "Enrolment").
+/// True when it changed anything. Needs palpa_coordinator.
+bool enrol(Connection& c, const std::string& trainee, const std::string& station, bool enrolled);
 
 /// Sessions uploaded by the connected login (station_sessions), by station name.
 struct StationCount {
