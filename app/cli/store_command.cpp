@@ -48,6 +48,13 @@ int run_init(const StoreOptions& o) {
     } else {
       say(fmt::format("store: {}: schema version {} (was {})", c.target(), r.to, r.from));
     }
+    if (r.large_objects_open) {
+      std::fputs("palpa-cli: warning: any login can create large objects in this database (outside every table and "
+                 "quota); only a superuser can revoke that: sudo -u postgres psql -d DBNAME -c \"REVOKE EXECUTE ON "
+                 "FUNCTION lo_create(oid), lo_creat(integer), lo_from_bytea(oid, bytea), lo_import(text), "
+                 "lo_import(text, oid) FROM PUBLIC\" (docs/centre.md, section 1)\n",
+                 stderr);
+    }
     return kOk;
   } catch (const store::StoreError& e) {
     print_error(e.what());

@@ -7,12 +7,15 @@
 #include "palpa/report/encoding.hpp"
 #include "palpa/report/images.hpp"
 #include "palpa/report/summary_csv.hpp"
+#include "palpa/report/printable.hpp"
 #include "palpa/score/figures.hpp"
 
 namespace palpa::report {
 namespace {
 
-std::string esc(std::string_view s) { return html_escape(s); }
+// Every field of a session file is the station's text: control and bidirectional
+// characters are shown as escapes (printable.hpp), then the markup is escaped.
+std::string esc(std::string_view s) { return html_escape(printable(s, 400)); }
 
 /// Fixed decimals for people; "-" when not finite.
 std::string fixed(double v, int decimals) {

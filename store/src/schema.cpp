@@ -7,12 +7,20 @@
 namespace palpa::store {
 namespace {
 
-// Serializes concurrent inits of one database (key: the bytes "PALL" as an integer).
-constexpr const char* kLock = "SELECT pg_advisory_xact_lock(1346457676)";
+// Serializes concurrent inits of one database. Advisory locks are anyone's to take (a
+// station could hold this key for ever), so the lock is palpa_schema's own, in a mode that
+// conflicts with itself and not with the ACCESS SHARE that reading the table takes: only
+// its owner can hold it. The advisory key ("PALL" as an integer) is taken only while no
+// palpa_schema exists, before any station login can do anything in this database.
+constexpr const char* kFirstLock = "SELECT pg_advisory_xact_lock(1346457676)";
+constexpr const char* kLock = "LOCK TABLE palpa_schema IN SHARE ROW EXCLUSIVE MODE";
+
+bool schema_table_exists(Connection& c) {
+  return c.exec("read the schema version", "SELECT to_regclass('palpa_schema') IS NOT NULL").text(0, 0) == "t";
+}
 
 int current_version(Connection& c) {
-  const auto exists = c.exec("read the schema version", "SELECT to_regclass('palpa_schema') IS NOT NULL");
-  if (exists.text(0, 0) != "t") return 0;
+  if (!schema_table_exists(c)) return 0;
   return static_cast<int>(
       c.exec("read the schema version", "SELECT coalesce(max(version), 0) FROM palpa_schema").integer(0, 0));
 }
@@ -46,10 +54,13 @@ InitResult init_schema(Connection& c, int target) {
   InitResult result;
   {
     Transaction t(c);
+    if (!schema_table_exists(c)) {
+      c.exec("lock the schema", kFirstLock);
+      c.exec_script("create palpa_schema",
+                    "CREATE TABLE IF NOT EXISTS palpa_schema (version integer PRIMARY KEY, "
+                    "applied_at timestamptz NOT NULL DEFAULT now())");
+    }
     c.exec("lock the schema", kLock);
-    c.exec_script("create palpa_schema",
-                  "CREATE TABLE IF NOT EXISTS palpa_schema (version integer PRIMARY KEY, "
-                  "applied_at timestamptz NOT NULL DEFAULT now())");
     result.from = current_version(c);
     t.commit();
   }
@@ -65,6 +76,13 @@ InitResult init_schema(Connection& c, int target) {
     t.commit();
   }
   result.to = current_version(c);
+  result.large_objects_open =
+      c.exec("check large objects",
+             "SELECT bool_or(a.grantee = 0 AND a.privilege_type = 'EXECUTE') FROM pg_proc p, "
+             "aclexplode(coalesce(p.proacl, acldefault('f', p.proowner))) a "
+             "WHERE p.oid IN ('pg_catalog.lo_create(oid)'::regprocedure, 'pg_catalog.lo_creat(integer)'::regprocedure, "
+             "'pg_catalog.lo_from_bytea(oid, bytea)'::regprocedure)")
+          .text(0, 0) == "t";
   return result;
 }
 

@@ -64,8 +64,9 @@ def files_in(root):
     return sorted(os.path.join(d, n) for d, _, names in os.walk(root) for n in names)
 
 
-class HostileStation(unittest.TestCase):
-    """Attacks on one store; subclasses say which (fresh, or migrated from version 1)."""
+class StoreFixture(unittest.TestCase):
+    """One store (a database) on the module's server, with station, worker and coordinator
+    logins and one session pushed; subclasses say how the store is made (prepare_store)."""
     DB = None
     pg = None
     dir = None
@@ -75,21 +76,21 @@ class HostileStation(unittest.TestCase):
     def setUpClass(cls):
         if cls.DB is None:
             raise unittest.SkipTest("base class")
-        if HostileStation.pg is None:
-            HostileStation.pg = pg_test_server.server_for_tests()
-            HostileStation.dir = tempfile.mkdtemp(prefix="palpa-hostile-")
+        if StoreFixture.pg is None:
+            StoreFixture.pg = pg_test_server.server_for_tests()
+            StoreFixture.dir = tempfile.mkdtemp(prefix="palpa-hostile-")
             upgrade = run_cli("session", "upgrade", os.path.join(REPO, "data", "sessions", "sloppy.palpa"), "--out",
-                              HostileStation.dir)
+                              StoreFixture.dir)
             assert upgrade.returncode == 0, upgrade.stderr
-        cls.small = os.path.join(HostileStation.dir, "sloppy.palpa")  # format 2, about 100 kB
+        cls.small = os.path.join(StoreFixture.dir, "sloppy.palpa")  # format 2, about 100 kB
         cls.pg.sql("CREATE DATABASE %s" % cls.DB)
         cls.prepare_store()
-        if not HostileStation.logins:  # the group roles exist once a store was made
+        if not StoreFixture.logins:  # the group roles exist once a store was made
             for user, group in (("station_1", "palpa_station"), ("station_2", "palpa_station"),
                                 ("station_evil", "palpa_station"), ("worker", "palpa_worker"),
                                 ("coord", "palpa_coordinator")):
-                HostileStation.pg.add_login(user, group)
-            HostileStation.logins = True
+                StoreFixture.pg.add_login(user, group)
+            StoreFixture.logins = True
         pushed = cls.push("station_1", "room-1", with_meta(cls.small, cls.path("room1.palpa"), id=cls.new_id(1)))
         assert pushed.returncode == 0, pushed.stderr
 
@@ -137,6 +138,11 @@ class HostileStation(unittest.TestCase):
                  "events", "file")
         text = "SELECT * FROM public.palpa_push_session(%s);" % ", ".join(args[k] for k in order)
         return self.sql(text, user, check)
+
+
+
+class HostileStation(StoreFixture):
+    """Attacks on one store; subclasses say which (fresh, or migrated from version 1)."""
 
     # -- the server functions -------------------------------------------------------------
     def test_temporary_tables_are_refused(self):
@@ -548,15 +554,15 @@ class MigratedStore(HostileStation):
 
 
 def run_cli(*args, timeout=300, **env):
-    pg = HostileStation.pg
+    pg = StoreFixture.pg
     environment = pg.env(**env) if pg else dict(os.environ, **env)
     return subprocess.run([CLI, *args], capture_output=True, text=True, env=environment, timeout=timeout)
 
 
 def tearDownModule():
-    if HostileStation.pg:
-        HostileStation.pg.close()
-        shutil.rmtree(HostileStation.dir, ignore_errors=True)
+    if StoreFixture.pg:
+        StoreFixture.pg.close()
+        shutil.rmtree(StoreFixture.dir, ignore_errors=True)
 
 
 def main():

@@ -20,6 +20,10 @@ int known_schema_version();
 struct InitResult {
   int from = 0;  ///< the version found (0: an empty database)
   int to = 0;    ///< the version now
+  /// Any login may still create large objects here (they live outside every table and
+  /// quota): only a superuser can take that away, which init run by a non-superuser
+  /// administrator cannot do (docs/centre.md, section 1).
+  bool large_objects_open = false;
 };
 
 /// Creates or migrates the schema, the tables, the roles palpa_station, palpa_worker and
