@@ -163,6 +163,26 @@ class LongSessions(unittest.TestCase):
             return 0.2 + 0.6 * (along if along < 1.0 else 2.0 - along), 0.2 + (row * 0.03) % 0.6
         self.score_a_million("a slow raster", raster)
 
+    def test_memory_does_not_grow_with_the_ticks_of_alternating_jumps(self):
+        # Two points 96 mm apart every tick: a stamp, and so a path point, per tick. The path
+        # keeps at most 2^20 points and thins past that, so twice the ticks cost no more.
+        peaks = []
+        with tempfile.TemporaryDirectory(prefix="palpa_long_") as d:
+            for n in (1100000, 2200000):
+                path = os.path.join(d, "jumps%d.palpa" % n)
+                session_with(path, flat_body(0.1), ((k * 1e-3, 0.02 if k % 2 else 0.98, 0.5) for k in range(n)))
+                # The scorer's own peak: a fresh parent whose only child it is.
+                probe = ("import resource, subprocess, sys; r = subprocess.run(sys.argv[1:], capture_output=True); "
+                         "print(r.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+                res = subprocess.run([sys.executable, "-c", probe, CLI, "score", path], capture_output=True,
+                                     text=True, timeout=120)
+                code, kb = res.stdout.split()
+                self.assertEqual(code, "0", res.stderr)
+                print("%d alternating jumps: %.0f MB" % (n, int(kb) / 1024.0), file=sys.stderr)
+                peaks.append(int(kb) / 1024.0)
+                os.remove(path)
+        self.assertLess(peaks[1], peaks[0] + 25.0, peaks)
+
     def test_a_million_random_jumps_score_in_under_300_mb(self):
         rnd = random.Random(7)
         self.score_a_million("a random jump every tick", lambda k: (rnd.uniform(0.02, 0.98), rnd.uniform(0.02, 0.98)))

@@ -132,7 +132,21 @@ void SamplePass::stamp(const engine::Sample& s, std::uint8_t level) {
   stamp_body_ = s.body;
   stamp_top_ = cache_top_;
   stamp_level_ = level;
-  path.push_back({s.body, piece_, s.u, s.v, cache_top_, exam_.coverage[b].visits(cell) >= 2});
+  keep_path_point({s.body, piece_, s.u, s.v, cache_top_, exam_.coverage[b].visits(cell) >= 2});
+}
+
+// One stamp in path_stride_ joins the path; a full path drops every other point and
+// doubles the stride. Points stay in order, each with its own piece.
+void SamplePass::keep_path_point(const PathPoint& p) {
+  if (stamps_seen_++ % path_stride_ != 0) return;
+  if (path.size() == kMaxPathPoints) {
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < path.size(); k += 2) path[kept++] = path[k];
+    path.resize(kept);
+    path_stride_ *= 2;
+    if ((stamps_seen_ - 1) % path_stride_ != 0) return;
+  }
+  path.push_back(p);
 }
 
 // Dwell and peak force since the last stamp go to the cells it covered.

@@ -17,6 +17,13 @@
 
 namespace palpa::score::detail {
 
+/// The most contact-path points the pass keeps (56 bytes each, 59 MB): a stamp every
+/// 0.5 mm, so 524 m of contact path; a thorough 30-minute exam is well under 100 m. A
+/// longer path (a hostile file jumping every tick) is thinned: every other point is
+/// dropped and from then on one stamp in 2, 4, 8 ... is kept, so the pass's memory does
+/// not grow with the session's length (docs/scoring.md, "Memory").
+inline constexpr std::size_t kMaxPathPoints = std::size_t{1} << 20;
+
 class SamplePass {
  public:
   SamplePass(ExamGrids& exam, const std::vector<Landing>& mark_tops, const Timeline& timeline,
@@ -51,6 +58,7 @@ class SamplePass {
   std::uint8_t level_at(const engine::Sample& s) const;
   void add_force_near_marks(double force);
   void stamp(const engine::Sample& s, std::uint8_t level);
+  void keep_path_point(const PathPoint& p);
   void flush();
 
   ExamGrids& exam_;
@@ -62,6 +70,7 @@ class SamplePass {
   double palpate2_;
 
   std::vector<int> stamped_;  // cells the current stamp covered
+  std::uint64_t path_stride_ = 1, stamps_seen_ = 0;  // the path keeps one stamp in path_stride_
   std::optional<engine::Sample> held_;  // the last sample given, measured when the next comes
   std::size_t pause_index_ = 0;
   bool was_contact_ = false, have_stamp_ = false;
