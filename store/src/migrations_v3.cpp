@@ -22,6 +22,8 @@ ALTER TABLE public.store_settings
   ADD COLUMN max_start_skew_s integer NOT NULL DEFAULT 300 CHECK (max_start_skew_s BETWEEN 0 AND 86400),
   ADD COLUMN enrolment text NOT NULL DEFAULT 'flag' CHECK (enrolment IN ('flag', 'refuse'));
 ALTER TABLE public.sessions ADD COLUMN enrolled boolean NOT NULL DEFAULT true;
+ALTER TABLE public.cases DROP CONSTRAINT cases_sha256_key;
+CREATE INDEX cases_sha256 ON public.cases(sha256);
 CREATE INDEX sessions_login_day ON public.sessions(uploaded_by, uploaded_at);
 ALTER TABLE public.work_queue ADD COLUMN login text;
 UPDATE public.work_queue w SET login = s.uploaded_by FROM public.sessions s WHERE s.id = w.session_id;
@@ -244,9 +246,12 @@ BEGIN
       p_station USING ERRCODE = '42501';
   END IF;
   v_case_sha := pg_catalog.encode(pg_catalog.sha256(pg_catalog.convert_to(p_case::text, 'UTF8')), 'hex');
-  INSERT INTO public.cases(sha256, title, document) VALUES (v_case_sha, p_case_title, p_case)
-    ON CONFLICT (sha256) DO NOTHING;
-  SELECT c.id INTO v_case FROM public.cases c WHERE c.sha256 = v_case_sha;
+  -- No unique key to wait on: a station holding a new case's row in an open transaction
+  -- would hold every push of that case. Two pushes of a new case at once make two rows.
+  SELECT c.id INTO v_case FROM public.cases c WHERE c.sha256 = v_case_sha ORDER BY c.id LIMIT 1;
+  IF v_case IS NULL THEN
+    INSERT INTO public.cases(sha256, title, document) VALUES (v_case_sha, p_case_title, p_case) RETURNING id INTO v_case;
+  END IF;
   INSERT INTO public.sessions(session_id, station, trainee_id, case_id, started_at, mode, complete, samples,
                               size_bytes, sha256, file_name, events, file, uploaded_by, enrolled)
     VALUES (p_session_id, p_station, v_trainee, v_case, p_started_at, p_mode, p_complete, p_samples,

@@ -10,6 +10,7 @@ changes. Every store is a database of its own on one throwaway PostgreSQL server
 import argparse
 import csv
 import hashlib
+import json
 import os
 import re
 import resource
@@ -308,9 +309,13 @@ class Locks(Store):
                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                 env=self.pg.env())
         try:
-            push = ("SELECT * FROM public.palpa_push_session('room-evil', '%s', 'newcomer', '', '{}'::jsonb, now(), "
+            # The new trainee's row and the new case's row, held in an open transaction.
+            fresh = json.loads(hostile.meta_of(self.small)["case"])
+            fresh["title"] = "A case no one has pushed yet"
+            case = json.dumps(fresh)
+            push = ("SELECT * FROM public.palpa_push_session('room-evil', '%s', 'newcomer', '', %s::jsonb, now(), "
                     "'trainee', true, 1, 'x.palpa', '[]'::jsonb, '\\x%s'::bytea);"
-                    % (self.new_id(800), hostile.SQLITE_HEADER))
+                    % (self.new_id(800), literal(case), hostile.SQLITE_HEADER))
             evil.stdin.write("SET idle_in_transaction_session_timeout = 0; SET statement_timeout = 0; "
                              "SET lock_timeout = 0;\nSELECT pg_advisory_lock(1346457676);\nBEGIN;\n" + push + "\n")
             evil.stdin.flush()
@@ -327,6 +332,12 @@ class Locks(Store):
             self.assertEqual(res.returncode, 0, res.stderr)
             self.assertIn("queued: ", res.stdout)
             self.assertIn("lock", res.stdout)
+            # The same case for another trainee: nothing to wait on.
+            start = time.monotonic()
+            res = self.push("station_2", "room-2", self.session(820, trainee="someone-else", case=case),
+                            outbox=self.path("outbox-empty"))  # not the outbox that waits on the held trainee
+            self.assertIn("stored: ", res.stdout, res.stdout + res.stderr)
+            self.assertLess(time.monotonic() - start, 4.0)
             start = time.monotonic()
             init = run_cli("store", "init", self.pg.url(self.DB))
             self.assertEqual(init.returncode, 0, init.stderr)
