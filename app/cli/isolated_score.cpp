@@ -183,7 +183,8 @@ ChildOutput wait_for(pid_t pid, int out_fd, int err_fd, std::chrono::seconds lim
         throw;
       }
     }
-    if (poll(fds, 2, static_cast<int>(std::min<long long>(left.count(), 1000))) < 0 && errno != EINTR) break;
+    // At least four wakes a second: while_waiting (the lease's renewal) runs on each.
+    if (poll(fds, 2, static_cast<int>(std::min<long long>(left.count(), 250))) < 0 && errno != EINTR) break;
     for (int k = 0; k < 2; ++k) {
       if (fds[k].fd < 0 || fds[k].revents == 0) continue;
       const auto n = read(fds[k].fd, buffer, sizeof buffer);

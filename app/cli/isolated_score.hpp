@@ -28,7 +28,7 @@ struct IsolatedScore {
 };
 
 /// Scores `claim` in a child process (this executable, `store score-claim`) under `limits`.
-/// `while_waiting` runs about once a second while the child works (the worker renews its
+/// `while_waiting` runs about four times a second while the child works (the worker renews its
 /// lease there); an exception from it propagates after the child is killed.
 IsolatedScore score_in_child(const store::Claim& claim, const ScoreLimits& limits,
                              const std::function<void()>& while_waiting = {});
