@@ -231,8 +231,11 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     if (const auto it = o.station_of.find(input.file); it != o.station_of.end()) header.station = it->second;
     if (const auto it = o.row_of.find(input.file); it != o.row_of.end()) check_row(stream.head(), it->second, input.file);
     if (!o.filter.matches(header)) {
-      // Read through all the same: a damaged file is reported whatever the filter.
-      while (!stream.next().empty()) {
+      // Read through all the same: a damaged file is reported whatever the filter. Not a
+      // file from the store: a worker read it whole, and this process reads only heads.
+      if (!o.result_of.contains(input.file)) {
+        while (!stream.next().empty()) {
+        }
       }
       outcome.left_out = true;
       return outcome;

@@ -39,6 +39,9 @@ std::string host_name() {
   return name;
 }
 
+// Thrown from the lease's renewal when another worker holds the session now.
+struct LeaseLost {};
+
 struct WorkerTally {
   std::mutex mutex;
   int scored = 0, failed = 0, killed = 0, lost = 0;
@@ -57,12 +60,19 @@ void work_on(store::Connection& c, const store::Claim& claim, const std::string&
   const auto every = std::chrono::duration<double>(o.lease_s / 3.0);
   auto renew = [&] {
     if (std::chrono::steady_clock::now() - renewed < every) return;
-    store::renew_claim(c, claim, owner, o.lease_s);
+    if (!store::renew_claim(c, claim, owner, o.lease_s)) throw LeaseLost{};  // stops the child: its work is lost
     renewed = std::chrono::steady_clock::now();
   };
   const auto& limits = o.limits;
   try {
     scored = score_in_child(claim, limits, renew);
+  } catch (const LeaseLost&) {
+    std::lock_guard lock(tally.mutex);
+    ++tally.lost;
+    std::printf("lost the lease: %s (another worker took it over; its scorer was stopped)\n",
+                store::describe(claim).c_str());
+    std::fflush(stdout);
+    return;
   } catch (const store::StoreError& e) {  // no memory file, pipe or process: this machine's trouble, retried
     if (e.unreachable()) throw;                // the server went away while renewing: reconnect
     scored.error = store::describe(claim) + ": " + e.what();

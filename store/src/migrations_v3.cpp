@@ -21,10 +21,18 @@ ALTER TABLE public.store_settings
     CHECK (max_bytes_per_login_day BETWEEN 65536 AND 1099511627776),
   ADD COLUMN max_start_skew_s integer NOT NULL DEFAULT 300 CHECK (max_start_skew_s BETWEEN 0 AND 86400),
   ADD COLUMN enrolment text NOT NULL DEFAULT 'flag' CHECK (enrolment IN ('flag', 'refuse'));
+-- A session the day's quota could never take would wait in its outbox for ever.
+ALTER TABLE public.store_settings ADD CONSTRAINT store_settings_day_holds_a_file
+  CHECK (max_bytes_per_login_day >= max_file_bytes);
 ALTER TABLE public.sessions ADD COLUMN enrolled boolean NOT NULL DEFAULT true;
+-- What a push cost the store: the file, its events and, when it brought a new case, the
+-- case document. The daily quota counts this, not the file alone.
+ALTER TABLE public.sessions ADD COLUMN stored_bytes bigint;
+UPDATE public.sessions SET stored_bytes = size_bytes + pg_catalog.pg_column_size(events);
+ALTER TABLE public.sessions ALTER COLUMN stored_bytes SET NOT NULL;
 ALTER TABLE public.cases DROP CONSTRAINT cases_sha256_key;
 CREATE INDEX cases_sha256 ON public.cases(sha256);
-CREATE INDEX sessions_login_day ON public.sessions(uploaded_by, uploaded_at);
+CREATE INDEX sessions_login_day ON public.sessions(uploaded_by, uploaded_at) INCLUDE (stored_bytes);
 ALTER TABLE public.work_queue ADD COLUMN login text;
 UPDATE public.work_queue w SET login = s.uploaded_by FROM public.sessions s WHERE s.id = w.session_id;
 ALTER TABLE public.work_queue ALTER COLUMN login SET NOT NULL;
@@ -55,7 +63,11 @@ GRANT SELECT ON public.claim_turns TO palpa_worker, palpa_coordinator;
 
 // Names a person reads: NFKC (no NBSP, no decomposed accents, no full-width letters), no
 // space at either end or twice in a row, at most two combining marks on a letter, and
-// letters of one script among Latin, Greek and Cyrillic (no Cyrillic "а" inside "alice").
+// letters of one script among Latin, the phonetic alphabet (IPA), Greek, Cyrillic,
+// Armenian and Cherokee, the scripts whose letters look like Latin ones (no Cyrillic "а"
+// inside "alice", no IPA "ɑ"). Look-alikes within one script (a dotless ı) remain: they
+// are letters of real names. Checked when a name first enters the store: a trainee a
+// version-2 store took keeps its name.
 constexpr const char* kV3Names = R"sql(
 CREATE FUNCTION public.palpa_check_name(p_field text, p_value text, p_max integer)
   RETURNS void LANGUAGE plpgsql IMMUTABLE SET search_path = pg_catalog, pg_temp AS $fn$
@@ -73,31 +85,39 @@ BEGIN
   IF p_value ~ '[\u0300-\u036f\u1ab0-\u1aff\u1dc0-\u1dff\u20d0-\u20ff\ufe20-\ufe2f]{3}' THEN
     RAISE EXCEPTION 'field %: more than two combining marks on one letter', p_field USING ERRCODE = '22023';
   END IF;
-  v_scripts := (p_value ~ '[A-Za-z\u00c0-\u024f]')::integer + (p_value ~ '[\u0370-\u03ff\u1f00-\u1fff]')::integer
-               + (p_value ~ '[\u0400-\u052f]')::integer;
+  v_scripts := (p_value ~ '[A-Za-z\u00c0-\u024f\u1e00-\u1eff\u2c60-\u2c7f\ua720-\ua7ff]')::integer
+               + (p_value ~ '[\u0250-\u02af\u1d00-\u1dbf]')::integer
+               + (p_value ~ '[\u0370-\u03ff\u1f00-\u1fff]')::integer + (p_value ~ '[\u0400-\u052f\u1c80-\u1c8f\ua640-\ua69f]')::integer
+               + (p_value ~ '[\u0530-\u058f]')::integer + (p_value ~ '[\u13a0-\u13ff\uab70-\uabbf]')::integer;
   IF v_scripts > 1 THEN
-    RAISE EXCEPTION 'field %: mixes Latin, Greek or Cyrillic letters (look-alikes)', p_field USING ERRCODE = '22023';
+    RAISE EXCEPTION 'field %: mixes letters of Latin, IPA, Greek, Cyrillic, Armenian or Cherokee (look-alikes)', p_field
+      USING ERRCODE = '22023';
   END IF;
 END
 $fn$;
 ALTER FUNCTION public.palpa_check_name(text, text, integer) OWNER TO palpa_owner;
 REVOKE ALL ON FUNCTION public.palpa_check_name(text, text, integer) FROM PUBLIC;
 
--- A JSON document whose text is bounded: every number between 1e-15 and 1e15 in size (or
--- 0) with at most 40 digits after the point, so a number's text is at most about 60
--- characters, whatever few bytes it takes stored (1.0 followed by 16383 zeros takes 23),
--- and the whole text at most p_max bytes. Read number by number: nothing is made as text
--- before it is known to be small.
+-- A JSON document whose text is bounded: every number below 1e15 in size with at most 40
+-- digits after the point, so a number's text is at most about 60 characters whatever few
+-- bytes it takes stored (1.0 followed by 16383 zeros takes 23), and the whole text at most
+-- p_max bytes. Read number by number: nothing is made as text before it is known to be small.
+CREATE FUNCTION public.palpa_document_amplified(p_value jsonb)
+  RETURNS boolean LANGUAGE sql IMMUTABLE SET search_path = pg_catalog, pg_temp AS $fn$
+  SELECT EXISTS (SELECT 1 FROM pg_catalog.jsonb_path_query(p_value, 'strict $.** ? (@.type() == "number")') AS n(v)
+                 WHERE pg_catalog.scale(v::numeric) > 40 OR pg_catalog.abs(v::numeric) >= 1e15)
+$fn$;
+ALTER FUNCTION public.palpa_document_amplified(jsonb) OWNER TO palpa_owner;
+REVOKE ALL ON FUNCTION public.palpa_document_amplified(jsonb) FROM PUBLIC;
+
 CREATE FUNCTION public.palpa_check_document(p_field text, p_value jsonb, p_type text, p_max integer)
   RETURNS void LANGUAGE plpgsql IMMUTABLE SET search_path = pg_catalog, pg_temp AS $fn$
 BEGIN
   IF p_value IS NULL OR pg_catalog.jsonb_typeof(p_value) <> p_type OR pg_catalog.pg_column_size(p_value) > p_max THEN
     RAISE EXCEPTION 'field %: not a JSON % of at most % bytes', p_field, p_type, p_max USING ERRCODE = '22023';
   END IF;
-  IF EXISTS (SELECT 1 FROM pg_catalog.jsonb_path_query(p_value, 'strict $.** ? (@.type() == "number")') AS n(v)
-             WHERE pg_catalog.scale(v::numeric) > 40
-                OR (v::numeric <> 0 AND pg_catalog.abs(v::numeric) NOT BETWEEN 1e-15 AND 1e15)) THEN
-    RAISE EXCEPTION 'field %: holds a number outside 1e-15 .. 1e15 or with more than 40 decimals', p_field
+  IF public.palpa_document_amplified(p_value) THEN
+    RAISE EXCEPTION 'field %: holds a number of 1e15 or more, or with more than 40 decimals', p_field
       USING ERRCODE = '22023';
   END IF;
   IF pg_catalog.octet_length(p_value::text) > p_max THEN
@@ -121,7 +141,7 @@ BEGIN
   IF p_session_id IS NULL OR p_session_id !~ '^([0-9a-f]{32}|[0-9a-f]{16})$' THEN
     RAISE EXCEPTION 'field id: not a session id (32 lowercase hex digits)' USING ERRCODE = '22023';
   END IF;
-  PERFORM public.palpa_check_name('trainee', p_trainee, 128);
+  PERFORM public.palpa_check_text('trainee', p_trainee, 128);  -- a new one also palpa_check_name (the push)
   PERFORM public.palpa_check_text('file name', p_file_name, 255);
   IF pg_catalog.strpos(p_file_name, '/') > 0 OR p_file_name IN ('.', '..') THEN
     RAISE EXCEPTION 'field file name: holds a /' USING ERRCODE = '22023';
@@ -158,9 +178,10 @@ BEGIN
 END
 $fn$;
 
--- The login's quotas, checked with its station's row locked (two pushes of one station
--- cannot both pass the last free place).
-CREATE FUNCTION public.palpa_check_quota(p_station text, p_bytes bigint)
+-- The login's quotas, checked with its stations' rows locked (two pushes of one login, under
+-- any of its station names, cannot both pass the last free place). p_bytes: what this push
+-- would store.
+CREATE FUNCTION public.palpa_check_quota(p_bytes bigint)
   RETURNS void LANGUAGE plpgsql VOLATILE SET search_path = pg_catalog, pg_temp AS $fn$
 DECLARE
   v_settings public.store_settings;
@@ -168,13 +189,13 @@ DECLARE
   v_bytes bigint;
 BEGIN
   SELECT * INTO v_settings FROM public.store_settings;
-  PERFORM 1 FROM public.stations st WHERE st.name = p_station FOR UPDATE;
+  PERFORM 1 FROM public.stations st WHERE st.db_user = session_user FOR UPDATE;
   SELECT count(*) INTO v_pending FROM public.work_queue w WHERE w.login = session_user AND NOT w.done;
   IF v_pending >= v_settings.max_pending_per_login THEN
     RAISE EXCEPTION 'quota: this login has % sessions waiting to be scored (store_settings.max_pending_per_login); '
                     'try again once they are scored', v_pending USING ERRCODE = '53400';
   END IF;
-  SELECT coalesce(sum(s.size_bytes), 0) INTO v_bytes FROM public.sessions s
+  SELECT coalesce(sum(s.stored_bytes), 0) INTO v_bytes FROM public.sessions s
     WHERE s.uploaded_by = session_user AND s.uploaded_at > pg_catalog.now() - interval '1 day';
   IF v_bytes + p_bytes > v_settings.max_bytes_per_login_day THEN
     RAISE EXCEPTION 'quota: this login pushed % bytes in the last 24 hours (store_settings.max_bytes_per_login_day)',
@@ -182,8 +203,8 @@ BEGIN
   END IF;
 END
 $fn$;
-ALTER FUNCTION public.palpa_check_quota(text, bigint) OWNER TO palpa_owner;
-REVOKE ALL ON FUNCTION public.palpa_check_quota(text, bigint) FROM PUBLIC;
+ALTER FUNCTION public.palpa_check_quota(bigint) OWNER TO palpa_owner;
+REVOKE ALL ON FUNCTION public.palpa_check_quota(bigint) FROM PUBLIC;
 )sql";
 
 // The push, with its waits capped: a lock another login holds (an open transaction that
@@ -207,6 +228,7 @@ DECLARE
   v_enrolled boolean;
   v_case bigint;
   v_id bigint;
+  v_bytes bigint;
 BEGIN
   PERFORM public.palpa_check_text('station', p_station, 64);
   IF p_station !~ '^[A-Za-z0-9][A-Za-z0-9 ._-]*$' OR p_station ~ '\s$|\s\s' THEN
@@ -228,8 +250,13 @@ BEGIN
     RETURN QUERY SELECT false, v_sha;
     RETURN;
   END IF;
-  PERFORM public.palpa_check_quota(p_station, pg_catalog.octet_length(p_file));
+  v_case_sha := pg_catalog.encode(pg_catalog.sha256(pg_catalog.convert_to(p_case::text, 'UTF8')), 'hex');
+  SELECT c.id INTO v_case FROM public.cases c WHERE c.sha256 = v_case_sha ORDER BY c.id LIMIT 1;
+  v_bytes := pg_catalog.octet_length(p_file) + pg_catalog.pg_column_size(p_events)
+             + CASE WHEN v_case IS NULL THEN pg_catalog.pg_column_size(p_case) ELSE 0 END;
+  PERFORM public.palpa_check_quota(v_bytes);
   SELECT t.id INTO v_trainee FROM public.trainees t WHERE t.name = p_trainee;
+  IF v_trainee IS NULL THEN PERFORM public.palpa_check_name('trainee', p_trainee, 128); END IF;
   IF v_trainee IS NULL AND (SELECT st.enrolment FROM public.store_settings st) = 'flag' THEN
     INSERT INTO public.trainees(name) VALUES (p_trainee) ON CONFLICT (name) DO NOTHING RETURNING id INTO v_trainee;
     v_new_trainee := v_trainee IS NOT NULL;
@@ -245,18 +272,16 @@ BEGIN
     RAISE EXCEPTION 'field trainee: not enrolled at station "%" (a coordinator enrols: palpa-cli store enrol)',
       p_station USING ERRCODE = '42501';
   END IF;
-  v_case_sha := pg_catalog.encode(pg_catalog.sha256(pg_catalog.convert_to(p_case::text, 'UTF8')), 'hex');
   -- No unique key to wait on: a station holding a new case's row in an open transaction
   -- would hold every push of that case. Two pushes of a new case at once make two rows.
-  SELECT c.id INTO v_case FROM public.cases c WHERE c.sha256 = v_case_sha ORDER BY c.id LIMIT 1;
   IF v_case IS NULL THEN
     INSERT INTO public.cases(sha256, title, document) VALUES (v_case_sha, p_case_title, p_case) RETURNING id INTO v_case;
   END IF;
   INSERT INTO public.sessions(session_id, station, trainee_id, case_id, started_at, mode, complete, samples,
-                              size_bytes, sha256, file_name, events, file, uploaded_by, enrolled)
+                              size_bytes, sha256, file_name, events, file, uploaded_by, enrolled, stored_bytes)
     VALUES (p_session_id, p_station, v_trainee, v_case, p_started_at, p_mode, p_complete, p_samples,
             pg_catalog.octet_length(p_file), pg_catalog.encode(pg_catalog.sha256(p_file), 'hex'), p_file_name,
-            p_events, p_file, session_user, v_enrolled)
+            p_events, p_file, session_user, v_enrolled, v_bytes)
     ON CONFLICT (session_id) DO NOTHING
     RETURNING id INTO v_id;
   IF v_id IS NULL THEN  -- the same id pushed at the same time from elsewhere
@@ -285,13 +310,15 @@ DECLARE
 BEGIN
   FOR v_login IN
     SELECT f.login FROM (SELECT DISTINCT q.login FROM public.work_queue q
-                         WHERE NOT q.done AND (q.lease_expires IS NULL OR q.lease_expires < pg_catalog.now()
-                                               OR q.lease_owner = p_owner)) f
+                         WHERE NOT q.done AND q.attempts < (SELECT st.max_score_attempts FROM public.store_settings st)
+                           AND (q.lease_expires IS NULL OR q.lease_expires < pg_catalog.now()
+                                OR q.lease_owner = p_owner)) f
       LEFT JOIN public.claim_turns ct ON ct.login = f.login
       ORDER BY ct.last_claim NULLS FIRST, f.login
   LOOP
     SELECT q.session_id INTO v_id FROM public.work_queue q
       WHERE q.login = v_login AND NOT q.done
+        AND q.attempts < (SELECT st.max_score_attempts FROM public.store_settings st)
         AND (q.lease_expires IS NULL OR q.lease_expires < pg_catalog.now() OR q.lease_owner = p_owner)
       ORDER BY q.session_id LIMIT 1 FOR UPDATE SKIP LOCKED;
     IF v_id IS NOT NULL THEN
@@ -309,6 +336,13 @@ $fn$;
 ALTER FUNCTION public.palpa_claim_session(text, double precision) OWNER TO palpa_owner;
 REVOKE ALL ON FUNCTION public.palpa_claim_session(text, double precision) FROM PUBLIC;
 GRANT EXECUTE ON FUNCTION public.palpa_claim_session(text, double precision) TO palpa_worker;
+-- Documents a version-2 store took whose text is far larger than stored are never made
+-- into text by a worker: their sessions are ended once, with the reason.
+UPDATE public.work_queue w SET done = true, lease_owner = NULL, lease_expires = NULL,
+  last_error = 'refused: its case or events hold a number whose text is far larger than stored'
+  FROM public.sessions s JOIN public.cases c ON c.id = s.case_id
+  WHERE s.id = w.session_id AND NOT w.done
+    AND (public.palpa_document_amplified(c.document) OR public.palpa_document_amplified(s.events));
 )sql";
 
 // A coordinator's enrolment: trainee (made if new) at a station that exists; p_enrol false
@@ -321,7 +355,9 @@ DECLARE
   v_trainee bigint;
   v_rows integer;
 BEGIN
-  PERFORM public.palpa_check_name('trainee', p_trainee, 128);
+  IF NOT EXISTS (SELECT 1 FROM public.trainees t WHERE t.name = p_trainee) THEN
+    PERFORM public.palpa_check_name('trainee', p_trainee, 128);
+  END IF;
   IF NOT EXISTS (SELECT 1 FROM public.stations st WHERE st.name = p_station) THEN
     RAISE EXCEPTION 'field station: no station "%" has pushed or been registered', p_station USING ERRCODE = '22023';
   END IF;

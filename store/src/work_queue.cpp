@@ -71,9 +71,10 @@ std::optional<Claim> claim_next(Connection& c, const std::string& owner, double 
   try {
     return read_claim(c, id);
   } catch (const StoreError& e) {
-    if (e.unreachable()) throw;
-    // A row this worker cannot read (the server ran out of memory making its text): given
-    // back with the reason, so that it is retired after max_score_attempts claims.
+    if (c.broken()) throw;
+    // A row this worker cannot read (the server ran out of memory making its text, a
+    // timeout): given back with the reason, so that it is retired after
+    // max_score_attempts claims, whatever the error's class.
     Claim stub;
     stub.id = id;
     release_claim(c, stub, owner, e.what());

@@ -60,6 +60,8 @@ class Connection {
   /// HOST:PORT/DB as USER: the target without the connection string (no password).
   std::string target() const;
   PGconn* get() const { return c_.get(); }
+  /// True when the connection itself is gone (not a statement that failed on a live one).
+  bool broken() const { return PQstatus(c_.get()) != CONNECTION_OK; }
   /// Runs one statement with its parameters; `binary_result` asks for binary cells (bytea).
   /// Throws StoreError naming the statement's purpose `what` and the server's message.
   Result exec(std::string_view what, const char* sql, const std::vector<Param>& params = {},
