@@ -2,6 +2,7 @@
 add_executable(anatomy_tests
   core/anatomy/fit_volume_test.cpp
   core/anatomy/import_volume_test.cpp
+  core/anatomy/label_values_test.cpp
   core/anatomy/import_mesh_test.cpp
 )
 target_link_libraries(anatomy_tests PRIVATE palpa_core GTest::gtest GTest::gtest_main)

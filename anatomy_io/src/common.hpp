@@ -109,7 +109,7 @@ struct Conversion {
 };
 
 /// Reads volume.voxel_count() values from `source` into volume.labels, refusing a value that
-/// is not a label (negative, above 65535, not a whole number) with its voxel index.
+/// is not a label (not a whole number, or beyond a 32-bit integer) with its voxel index.
 void read_labels(const fs::path& file, ByteSource& source, const Conversion& conversion, anatomy::LabelVolume& volume);
 
 /// Converts `count` values in memory (native byte order) starting at voxel `first`.

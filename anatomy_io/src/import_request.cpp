@@ -56,8 +56,12 @@ void check_table(const anatomy::LabelTable& table) {
   if (table.labels.empty() || table.labels.size() > anatomy::kMaxLabels) {
     throw ImportError(fmt::format("{}: from 1 to {} labels", table.name, anatomy::kMaxLabels));
   }
+  const auto span = static_cast<std::int64_t>(table.labels.rbegin()->first) - table.labels.begin()->first;
+  if (span >= static_cast<std::int64_t>(anatomy::kMaxLabelSpan)) {
+    throw ImportError(fmt::format("{}: labels from {} to {}: they may span at most {} values", table.name,
+                                  table.labels.begin()->first, table.labels.rbegin()->first, anatomy::kMaxLabelSpan));
+  }
   for (const auto& [label, entry] : table.labels) {
-    if (label < 0 || label > 65535) throw ImportError(fmt::format("{}: label {}: not in 0..65535", table.name, label));
     if (entry.name.size() > anatomy::kMaxLabelNameLength) {
       throw ImportError(fmt::format("{}: label {}: a name of at most {} characters", table.name, label,
                                     anatomy::kMaxLabelNameLength));

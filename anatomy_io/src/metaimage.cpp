@@ -171,7 +171,7 @@ void write_metaimage(const fs::path& file, const anatomy::LabelVolume& v, bool d
   const auto& d = v.direction;
   std::string header = "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n";
   const auto* bytes = reinterpret_cast<const unsigned char*>(v.labels.data());
-  const std::size_t n = v.labels.size() * 2;
+  const std::size_t n = v.labels.size() * sizeof(anatomy::Label);
   std::vector<unsigned char> packed;
   if (!detached) {
     packed = deflate_bytes(bytes, n, false);
@@ -185,7 +185,7 @@ void write_metaimage(const fs::path& file, const anatomy::LabelVolume& v, bool d
                         number(-d[1]), number(-d[4]), number(d[7]), number(-d[2]), number(-d[5]), number(d[8]));
   header += fmt::format("Offset = {} {} {}\nCenterOfRotation = 0 0 0\n", number(-v.origin[0] * 1e3),
                         number(-v.origin[1] * 1e3), number(v.origin[2] * 1e3));
-  header += fmt::format("ElementSpacing = {} {} {}\nDimSize = {} {} {}\nElementType = MET_USHORT\n",
+  header += fmt::format("ElementSpacing = {} {} {}\nDimSize = {} {} {}\nElementType = MET_INT\n",
                         number(v.spacing[0] * 1e3), number(v.spacing[1] * 1e3), number(v.spacing[2] * 1e3), v.dims[0],
                         v.dims[1], v.dims[2]);
   if (detached) {

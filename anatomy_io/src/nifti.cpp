@@ -227,8 +227,8 @@ void write_nifti(const fs::path& file, const anatomy::LabelVolume& v, bool gzip)
   const std::array<std::int16_t, 8> dim{3, static_cast<std::int16_t>(v.dims[0]), static_cast<std::int16_t>(v.dims[1]),
                                         static_cast<std::int16_t>(v.dims[2]), 1, 1, 1, 1};
   for (std::size_t n = 0; n < 8; ++n) put(raw, 40 + 2 * n, dim[n]);
-  put<std::int16_t>(raw, 70, 512);  // uint16
-  put<std::int16_t>(raw, 72, 16);
+  put<std::int16_t>(raw, 70, 8);  // DT_INT32: labels of any sign
+  put<std::int16_t>(raw, 72, 32);
   const auto& d = v.direction;
   const double det = d[0] * (d[4] * d[8] - d[5] * d[7]) - d[1] * (d[3] * d[8] - d[5] * d[6]) +
                      d[2] * (d[3] * d[7] - d[4] * d[6]);
@@ -251,7 +251,7 @@ void write_nifti(const fs::path& file, const anatomy::LabelVolume& v, bool gzip)
   }
   std::memcpy(raw.data() + 344, "n+1", 4);
   std::string bytes(reinterpret_cast<const char*>(raw.data()), raw.size());
-  bytes.append(reinterpret_cast<const char*>(v.labels.data()), v.labels.size() * 2);  // little-endian hosts
+  bytes.append(reinterpret_cast<const char*>(v.labels.data()), v.labels.size() * sizeof(anatomy::Label));  // little-endian hosts
   if (!gzip) {
     write_file(file, bytes, nullptr, 0);
     return;

@@ -203,7 +203,7 @@ anatomy::LabelVolume read_nrrd(const fs::path& file) {
 void write_nrrd(const fs::path& file, const anatomy::LabelVolume& v, bool detached) {
   check_writable(file, v);
   std::string header = "NRRD0004\n# written by Palpa (anatomy_io)\n";
-  header += fmt::format("type: unsigned short\ndimension: 3\nspace: right-anterior-superior\nsizes: {} {} {}\n",
+  header += fmt::format("type: int\ndimension: 3\nspace: right-anterior-superior\nsizes: {} {} {}\n",
                         v.dims[0], v.dims[1], v.dims[2]);
   header += "space directions:";
   for (std::size_t c = 0; c < 3; ++c) {
@@ -214,7 +214,7 @@ void write_nrrd(const fs::path& file, const anatomy::LabelVolume& v, bool detach
   header += fmt::format("space units: \"mm\" \"mm\" \"mm\"\nspace origin: ({},{},{})\n", number(v.origin[0] * 1e3),
                         number(v.origin[1] * 1e3), number(v.origin[2] * 1e3));
   const auto* bytes = reinterpret_cast<const unsigned char*>(v.labels.data());
-  const std::size_t n = v.labels.size() * 2;
+  const std::size_t n = v.labels.size() * sizeof(anatomy::Label);
   if (detached) {
     const fs::path data = fs::path(file).replace_extension(".raw");
     header += fmt::format("encoding: raw\ndata file: {}\n", data.filename().string());

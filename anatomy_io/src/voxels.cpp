@@ -114,6 +114,9 @@ std::string voxel_place(const anatomy::LabelVolume& v, std::size_t index) {
   return fmt::format("voxel ({}, {}, {})", index % nx, (index / nx) % ny, index / (nx * ny));
 }
 
+constexpr std::int64_t kLowest = std::numeric_limits<anatomy::Label>::min();
+constexpr std::int64_t kHighest = std::numeric_limits<anatomy::Label>::max();
+
 template <typename T>
 void convert_typed(const fs::path& file, const unsigned char* data, std::size_t count, const Conversion& c,
                    std::size_t first, anatomy::LabelVolume& volume) {
@@ -123,11 +126,11 @@ void convert_typed(const fs::path& file, const unsigned char* data, std::size_t 
     if constexpr (std::is_integral_v<T>) {
       if (!scaled) {
         const auto value = static_cast<std::int64_t>(stored);
-        if (value < 0 || value > 65535) {
+        if (value < kLowest || value > kHighest) {
           fail(file, voxel_place(volume, first + n),
-               fmt::format("label {} is outside 0..65535 (labels are whole numbers from 0 to 65535)", value));
+               fmt::format("label {} is outside {}..{} (labels are 32-bit integers)", value, kLowest, kHighest));
         }
-        volume.labels[first + n] = static_cast<std::uint16_t>(value);
+        volume.labels[first + n] = static_cast<anatomy::Label>(value);
         continue;
       }
     }
@@ -135,11 +138,11 @@ void convert_typed(const fs::path& file, const unsigned char* data, std::size_t 
     if (!std::isfinite(value) || value != std::floor(value)) {
       fail(file, voxel_place(volume, first + n), fmt::format("value {} is not a whole number: not a label volume", value));
     }
-    if (value < 0 || value > 65535) {
+    if (value < static_cast<double>(kLowest) || value > static_cast<double>(kHighest)) {
       fail(file, voxel_place(volume, first + n),
-           fmt::format("label {} is outside 0..65535 (labels are whole numbers from 0 to 65535)", value));
+           fmt::format("label {} is outside {}..{} (labels are 32-bit integers)", value, kLowest, kHighest));
     }
-    volume.labels[first + n] = static_cast<std::uint16_t>(value);
+    volume.labels[first + n] = static_cast<anatomy::Label>(value);
   }
 }
 

@@ -12,7 +12,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkType.h>
-#include <vtkUnsignedShortArray.h>
+#include <vtkIntArray.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -111,10 +111,11 @@ void write_vti(const fs::path& file, const anatomy::LabelVolume& v) {
   image->SetSpacing(v.spacing[0] * 1e3, v.spacing[1] * 1e3, v.spacing[2] * 1e3);
   image->SetOrigin(v.origin[0] * 1e3, v.origin[1] * 1e3, v.origin[2] * 1e3);
   image->SetDirectionMatrix(v.direction.data());
-  vtkNew<vtkUnsignedShortArray> labels;
+  vtkNew<vtkIntArray> labels;
   labels->SetName("labels");
   labels->SetNumberOfValues(static_cast<vtkIdType>(v.labels.size()));
-  std::memcpy(labels->GetPointer(0), v.labels.data(), v.labels.size() * sizeof(std::uint16_t));
+  static_assert(sizeof(int) == sizeof(anatomy::Label));
+  std::memcpy(labels->GetPointer(0), v.labels.data(), v.labels.size() * sizeof(anatomy::Label));
   image->GetPointData()->SetScalars(labels);
   vtkNew<vtkXMLImageDataWriter> writer;
   vtkNew<ErrorCatcher> errors;

@@ -126,6 +126,7 @@ void print_report(const ImportCommandOptions& o, const anatomy_io::ImportedCase&
   print_surface("bottom (support)", f.bottom, f.rim_band);
   print_tissue(c.file.bodies.front());
   print_lesions(r);
+  for (const auto& note : r.notes) std::printf("note      %s\n", shown(note).c_str());
   std::printf("wrote     %s\n", shown(o.out).c_str());
   std::printf("time      %.2f s (reading %.2f s, fitting %.2f s)\n", c.read_seconds + r.seconds, c.read_seconds, r.seconds);
 }

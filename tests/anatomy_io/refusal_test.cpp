@@ -142,18 +142,24 @@ TEST(BadGeometry, SpacingOriginAndDirectionAreChecked) {
   expect_refusal_names(refusal(dir / "zero_pixdim.nii"), dir / "zero_pixdim.nii", {"pixdim", "positive"});
 }
 
-TEST(BadLabels, NegativeTooLargeAndFractionalValuesAreRefusedWithTheirVoxel) {
+TEST(BadLabels, ValuesBeyondA32BitIntegerAndFractionsAreRefusedWithTheirVoxel) {
   ScratchDir dir;
+  // Negative labels are labels (patient MRI models label lesions -4 and -3).
   std::string shorts(2 * 2 * 2 * 2, '\0');
   shorts[2 * 5] = static_cast<char>(0xfe);  // voxel 5 = (1, 0, 1): -2
   shorts[2 * 5 + 1] = static_cast<char>(0xff);
   write_bytes(dir / "negative.nrrd", nrrd("type: short\nsizes: 2 2 2\nspacings: 1 1 1\n", shorts));
-  expect_refusal_names(refusal(dir / "negative.nrrd"), dir / "negative.nrrd", {"voxel (1, 0, 1)", "-2"});
-  std::string ints(4 * 8, '\0');
-  const std::int32_t large = 70000;
-  std::memcpy(ints.data() + 4 * 7, &large, 4);
-  write_bytes(dir / "large.mha", mha("DimSize = 2 2 2\nElementType = MET_INT\n", ints));
-  expect_refusal_names(refusal(dir / "large.mha"), dir / "large.mha", {"voxel (1, 1, 1)", "70000"});
+  EXPECT_EQ(read_label_volume(dir / "negative.nrrd").labels, (std::vector<anatomy::Label>{0, 0, 0, 0, 0, -2, 0, 0}));
+  std::string uints(4 * 8, '\0');
+  const std::uint32_t large = 3000000000u;  // above 2^31 - 1
+  std::memcpy(uints.data() + 4 * 7, &large, 4);
+  write_bytes(dir / "large.mha", mha("DimSize = 2 2 2\nElementType = MET_UINT\n", uints));
+  expect_refusal_names(refusal(dir / "large.mha"), dir / "large.mha", {"voxel (1, 1, 1)", "3000000000", "32-bit"});
+  std::string doubles(8 * 8, '\0');
+  const double below = -3e9;
+  std::memcpy(doubles.data() + 8 * 2, &below, 8);
+  write_bytes(dir / "below.nrrd", nrrd("type: double\nsizes: 2 2 2\nspacings: 1 1 1\n", doubles));
+  expect_refusal_names(refusal(dir / "below.nrrd"), dir / "below.nrrd", {"voxel (0, 1, 0)", "32-bit"});
   std::string floats(4 * 8, '\0');
   const float whole = 4.0f, fraction = 2.5f;
   std::memcpy(floats.data(), &whole, 4);
@@ -164,7 +170,7 @@ TEST(BadLabels, NegativeTooLargeAndFractionalValuesAreRefusedWithTheirVoxel) {
   std::memcpy(floats.data() + 4 * 3, &whole, 4);
   write_bytes(dir / "whole.nrrd", nrrd("type: float\nsizes: 2 2 2\nspacings: 1 1 1\n", floats));
   const anatomy::LabelVolume v = read_label_volume(dir / "whole.nrrd");
-  EXPECT_EQ(v.labels, (std::vector<std::uint16_t>{4, 0, 0, 4, 0, 0, 0, 0}));
+  EXPECT_EQ(v.labels, (std::vector<anatomy::Label>{4, 0, 0, 4, 0, 0, 0, 0}));
 }
 
 TEST(BadFiles, UnknownExtensionMissingFileAndCorruptGzip) {

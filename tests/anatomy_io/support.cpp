@@ -91,7 +91,7 @@ anatomy::LabelVolume permuted_flipped(const anatomy::LabelVolume& a) {
   return b;
 }
 
-std::array<double, 3> world_of_label(const anatomy::LabelVolume& v, std::uint16_t label) {
+std::array<double, 3> world_of_label(const anatomy::LabelVolume& v, anatomy::Label label) {
   std::array<double, 3> found{};
   int count = 0;
   for (int k = 0; k < v.dims[2]; ++k) {
@@ -107,7 +107,7 @@ std::array<double, 3> world_of_label(const anatomy::LabelVolume& v, std::uint16_
   return found;
 }
 
-std::array<double, 3> centroid_of_label(const anatomy::LabelVolume& v, std::uint16_t label) {
+std::array<double, 3> centroid_of_label(const anatomy::LabelVolume& v, anatomy::Label label) {
   std::array<double, 3> sum{};
   double count = 0;
   for (int k = 0; k < v.dims[2]; ++k) {

@@ -44,10 +44,10 @@ anatomy::LabelVolume oblique_ball();
 anatomy::LabelVolume permuted_flipped(const anatomy::LabelVolume& a);
 
 /// The world position of the one voxel with `label` (fails the test when not exactly one).
-std::array<double, 3> world_of_label(const anatomy::LabelVolume& v, std::uint16_t label);
+std::array<double, 3> world_of_label(const anatomy::LabelVolume& v, anatomy::Label label);
 
 /// The mean world position of the voxels with `label`.
-std::array<double, 3> centroid_of_label(const anatomy::LabelVolume& v, std::uint16_t label);
+std::array<double, 3> centroid_of_label(const anatomy::LabelVolume& v, anatomy::Label label);
 
 /// An icosphere of radius 0.05 m: 42 points, 80 triangles.
 anatomy::TriangleMesh icosphere();

@@ -32,6 +32,19 @@ TEST_P(RoundTrip, KeepsLabelsAndWorldPlacement) {
   expect_near3(r.world(0, 0, 0), a.world(0, 0, 0), 1e-9);
 }
 
+// Patient models label with negative integers and extreme values; every format keeps them.
+TEST_P(RoundTrip, KeepsNegativeAndLargeLabels) {
+  ScratchDir dir;
+  anatomy::LabelVolume a = oblique_ball();
+  a.labels[0] = -4;
+  a.labels[1] = -2147483647 - 1;
+  a.labels[2] = 2147483647;
+  a.labels[3] = 70000;
+  const fs::path file = dir / ("signed" + GetParam());
+  write_label_volume(file, a);
+  EXPECT_EQ(read_label_volume(file).labels, a.labels);
+}
+
 TEST_P(RoundTrip, PermutedAndFlippedAxesLandOnTheSameWorldPositions) {
   ScratchDir dir;
   const anatomy::LabelVolume a = oblique_ball();

@@ -62,12 +62,12 @@ def dome_voxels(relabel=None, overhang=False):
         for j in range(n):
             for i in range(n):
                 label = dome_label(-64 + VOXEL_MM * i, -64 + VOXEL_MM * j, -10 + VOXEL_MM * k, overhang)
-                out.append(relabel.get(label, label) if relabel else label)
+                out.append((relabel.get(label, label) if relabel else label) & 0xFF)  # int8 as its byte
     return (n, n, nz), bytes(out)
 
 
-def write_nrrd(path, dims, data, encoding="raw", sizes=None, body=None):
-    header = ["NRRD0004", "type: uint8", "dimension: 3", "space: right-anterior-superior",
+def write_nrrd(path, dims, data, encoding="raw", sizes=None, body=None, type_name="uint8"):
+    header = ["NRRD0004", "type: " + type_name, "dimension: 3", "space: right-anterior-superior",
               "sizes: " + " ".join(str(d) for d in (sizes or dims)),
               f"space directions: ({VOXEL_MM},0,0) (0,{VOXEL_MM},0) (0,0,{VOXEL_MM})",
               "space origin: (-64,-64,-10)", "kinds: domain domain domain", f"encoding: {encoding}"]
@@ -231,6 +231,26 @@ class ImportCli(unittest.TestCase):
         _, case = self.import_ok([self.volume, "--labels", table, "--grid", "17x17"], self.out("t.json"))
         self.assertEqual(case["tumors"][0]["modulus"], 20000)
         self.assertTrue(all(abs(e - 3250) < 1e-6 for e in case["bodies"][0]["modulus"]))
+
+    def test_negative_labels_and_an_unlisted_background(self):
+        # As patient breast MRI models label: lesion -4, muscle (the support) -1, fat 1,
+        # background 0, here as signed bytes; the table lists no 0.
+        dims, data = dome_voxels(relabel={3: -1, 4: -4})
+        volume = self.out("patient.nrrd")
+        write_nrrd(volume, dims, data, type_name="int8")
+        table = self.out("patient-table.json")
+        with open(table, "w") as f:
+            json.dump({"labels": {"1": {"class": "tissue", "name": "fat", "modulus": 3250},
+                                  "-1": {"class": "support", "name": "muscle"},
+                                  "-4": {"class": "lesion", "name": "malignant", "modulus": 20000}}}, f)
+        r, case = self.import_ok([volume, "--labels", table, "--grid", "17x17"], self.out("patient.json"))
+        self.assertIn('note      label 0 is not in the table "patient-table.json": taken as outside (the background)',
+                      r.stdout)
+        self.assertIn("(label -4)", r.stdout)
+        _, generic = self.import_ok([self.volume, "--labels", "generic", "--grid", "17x17"], self.out("g.json"))
+        self.assertEqual(case["bodies"][0]["medial"], generic["bodies"][0]["medial"])
+        self.assertEqual(case["tumors"][0]["center"], generic["tumors"][0]["center"])
+        self.assertEqual(case["tumors"][0]["modulus"], 20000)
 
     def test_a_skin_mesh_on_a_support_mesh(self):
         r, case = self.import_ok([self.skin, "--support", self.support, "--modulus", "3240"], self.out("m.json"))

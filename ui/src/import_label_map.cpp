@@ -31,13 +31,8 @@ anatomy::LabelEntry class_default(LabelClass kind) {
 }  // namespace
 
 std::map<int, std::size_t> count_labels(const anatomy::LabelVolume& volume) {
-  std::vector<std::size_t> counts(65536, 0);
-  for (std::uint16_t label : volume.labels) ++counts[label];
-  std::map<int, std::size_t> out;
-  for (std::size_t k = 0; k < counts.size(); ++k) {
-    if (counts[k] > 0) out[static_cast<int>(k)] = counts[k];
-  }
-  return out;
+  const auto counts = anatomy::label_counts(volume);
+  return {counts.begin(), counts.end()};
 }
 
 LabelMapTable::LabelMapTable(QWidget* parent) : QTableWidget(0, 5, parent) {

@@ -37,8 +37,8 @@ ColumnLayers column_layers(const VoxelSampler& sampler, const LabelTable& table,
   auto& layers = out.layers;
   bool at_top = true;
   for (double h = top - 0.5 * dh; h > bottom; h -= dh) {
-    const int label = sampler.nearest_label(sampler.index_of(f.to_world(s, t, h)));
-    const LabelEntry* entry = label < 0 ? nullptr : table.find(label);
+    const auto label = sampler.nearest_label(sampler.index_of(f.to_world(s, t, h)));
+    const LabelEntry* entry = label ? table.find(*label) : nullptr;
     if (entry == nullptr || !LabelTable::soft(entry->kind)) continue;
     at_top = at_top && entry->kind == LabelClass::Skin;
     if (at_top) out.skin += dh;
@@ -223,13 +223,13 @@ int smooth_until_fits(mat::BodyGrid& body) {
 }
 
 double dominant_stiffening(const LabelVolume& volume, const LabelTable& table) {
-  std::vector<std::size_t> count(65536, 0);
-  for (const std::uint16_t label : volume.labels) ++count[label];
+  const auto count = label_counts(volume);
   double b = 0.0;
   std::size_t most = 0;
   for (const auto& [label, entry] : table.labels) {
-    if ((entry.kind == LabelClass::Tissue || entry.kind == LabelClass::Skin) && count[static_cast<std::size_t>(label)] > most) {
-      most = count[static_cast<std::size_t>(label)];
+    const auto it = count.find(label);
+    if ((entry.kind == LabelClass::Tissue || entry.kind == LabelClass::Skin) && it != count.end() && it->second > most) {
+      most = it->second;
       b = entry.stiffening;
     }
   }

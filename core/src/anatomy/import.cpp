@@ -88,6 +88,10 @@ ImportResult import_label_volume(const LabelVolume& volume, const LabelTable& ta
   result.smoothing_passes = smooth_until_fits(result.body.grid);
   result.lesions = find_lesions(volume, table);
   keep_resolved(result, *std::max_element(volume.spacing.begin(), volume.spacing.end()));
+  if (table.find(0) == nullptr && std::find(volume.labels.begin(), volume.labels.end(), 0) != volume.labels.end()) {
+    result.notes.push_back(fmt::format("label 0 is not in the table \"{}\": taken as outside (the background)",
+                                       table.name));
+  }
   result.seconds = seconds_since(start);
   return result;
 }

@@ -36,12 +36,14 @@ LabelClass parse_class(const json& value, const std::string& source, const std::
   fail(source, where, "class must be one of \"tissue\", \"skin\", \"support\", \"lesion\", \"outside\"");
 }
 
-int parse_label_key(const std::string& key, const std::string& source) {
-  int label = -1;
+// Any integer as segmentation tools write it: "-4", "0", "12"; no "+", "-0" or leading 0.
+Label parse_label_key(const std::string& key, const std::string& source) {
+  Label label = 0;
   const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), label);
-  if (error != std::errc{} || end != key.data() + key.size() || label < 0 || label > 65535 || key.empty() ||
-      (key.size() > 1 && key[0] == '0')) {
-    fail(source, "/labels", fmt::format("label \"{}\" is not an integer in 0..65535", key.substr(0, 32)));
+  const std::string_view digits = key.starts_with('-') ? std::string_view(key).substr(1) : std::string_view(key);
+  if (error != std::errc{} || end != key.data() + key.size() || digits.empty() ||
+      (digits.size() > 1 && digits[0] == '0') || key == "-0") {
+    fail(source, "/labels", fmt::format("label \"{}\" is not an integer (such as -4, 0 or 12)", key.substr(0, 32)));
   }
   return label;
 }
@@ -92,7 +94,7 @@ const char* to_string(LabelClass kind) {
   return "outside";
 }
 
-const LabelEntry* LabelTable::find(int label) const {
+const LabelEntry* LabelTable::find(Label label) const {
   const auto it = labels.find(label);
   return it == labels.end() ? nullptr : &it->second;
 }
@@ -113,8 +115,13 @@ LabelTable parse_label_table(std::string_view text, const std::string& source) {
   LabelTable table;
   table.name = source;
   for (const auto& [key, value] : labels.items()) {
-    const int label = parse_label_key(key, source);
+    const Label label = parse_label_key(key, source);
     table.labels[label] = parse_entry(value, source, "/labels/" + key);
+  }
+  const auto span = static_cast<std::int64_t>(table.labels.rbegin()->first) - table.labels.begin()->first;
+  if (span >= static_cast<std::int64_t>(kMaxLabelSpan)) {
+    fail(source, "/labels", fmt::format("labels from {} to {}: they may span at most {} values",
+                                        table.labels.begin()->first, table.labels.rbegin()->first, kMaxLabelSpan));
   }
   return table;
 }

@@ -11,4 +11,17 @@ std::array<double, 3> LabelVolume::world(double i, double j, double k) const {
   return p;
 }
 
+std::map<Label, std::size_t> label_counts(const LabelVolume& volume) {
+  std::map<Label, std::size_t> counts;
+  std::size_t at = 0;
+  while (at < volume.labels.size()) {
+    const Label label = volume.labels[at];
+    std::size_t end = at + 1;
+    while (end < volume.labels.size() && volume.labels[end] == label) ++end;
+    counts[label] += end - at;
+    at = end;
+  }
+  return counts;
+}
+
 }  // namespace palpa::anatomy

@@ -18,7 +18,7 @@ struct Component {
 
 // Flood fill from `seed` over voxels holding `label`, with an explicit stack (a lesion of
 // millions of voxels must not overflow the call stack); `seen` marks what was taken.
-Component flood(const LabelVolume& v, std::size_t seed, std::uint16_t label, std::vector<bool>& seen) {
+Component flood(const LabelVolume& v, std::size_t seed, Label label, std::vector<bool>& seen) {
   Component c;
   std::vector<std::size_t> stack{seed};
   seen[seed] = true;
@@ -49,13 +49,23 @@ Component flood(const LabelVolume& v, std::size_t seed, std::uint16_t label, std
 }  // namespace
 
 std::vector<Lesion> find_lesions(const LabelVolume& volume, const LabelTable& table) {
-  std::vector<bool> is_lesion(65536, false);
-  for (const auto& [label, entry] : table.labels) is_lesion[static_cast<std::size_t>(label)] = entry.kind == LabelClass::Lesion;
+  // Labels come in runs: the table is asked again only when the label changes.
+  Label last = 0;
+  bool last_is = false, asked = false;
+  auto is_lesion = [&](Label label) {
+    if (!asked || label != last) {
+      const LabelEntry* entry = table.find(label);
+      last = label;
+      last_is = entry != nullptr && entry->kind == LabelClass::Lesion;
+      asked = true;
+    }
+    return last_is;
+  };
   std::vector<bool> seen(volume.labels.size(), false);
   std::vector<Lesion> out;
   const double voxel_volume = volume.spacing[0] * volume.spacing[1] * volume.spacing[2];
   for (std::size_t at = 0; at < volume.labels.size(); ++at) {
-    if (seen[at] || !is_lesion[volume.labels[at]]) continue;
+    if (seen[at] || !is_lesion(volume.labels[at])) continue;
     const Component c = flood(volume, at, volume.labels[at], seen);
     const LabelEntry& entry = *table.find(volume.labels[at]);
     const Eigen::Vector3d mean = c.sum / static_cast<double>(c.voxels);

@@ -29,23 +29,23 @@ constexpr int kOverhangSamples = 8;
 
 void check_labels(const LabelVolume& v, const LabelTable& table, const std::string& source) {
   if (v.voxel_count() == 0 || v.labels.size() != v.voxel_count()) throw ImportError(source + ": the volume holds no voxels");
-  std::vector<std::size_t> count(65536, 0);
-  for (const std::uint16_t label : v.labels) ++count[label];
   std::array<std::size_t, 5> per_class{};
-  for (int label = 0; label < 65536; ++label) {
-    if (count[static_cast<std::size_t>(label)] == 0) continue;
+  for (const auto& [label, count] : label_counts(v)) {
     const LabelEntry* entry = table.find(label);
+    if (entry == nullptr && label == 0) {  // background, as every segmentation tool writes it
+      per_class[static_cast<std::size_t>(LabelClass::Outside)] += count;
+      continue;
+    }
     if (entry == nullptr) {
-      const auto first = static_cast<std::size_t>(
-          std::find(v.labels.begin(), v.labels.end(), static_cast<std::uint16_t>(label)) - v.labels.begin());
+      const auto first = static_cast<std::size_t>(std::find(v.labels.begin(), v.labels.end(), label) - v.labels.begin());
       const auto i = first % static_cast<std::size_t>(v.dims[0]);
       const auto j = first / static_cast<std::size_t>(v.dims[0]) % static_cast<std::size_t>(v.dims[1]);
       const auto k = first / (static_cast<std::size_t>(v.dims[0]) * static_cast<std::size_t>(v.dims[1]));
       throw ImportError(fmt::format("{}: label {}: {} voxels (the first at voxel ({}, {}, {})) have a label the table "
                                     "\"{}\" does not list",
-                                    source, label, count[static_cast<std::size_t>(label)], i, j, k, table.name));
+                                    source, label, count, i, j, k, table.name));
     }
-    per_class[static_cast<std::size_t>(entry->kind)] += count[static_cast<std::size_t>(label)];
+    per_class[static_cast<std::size_t>(entry->kind)] += count;
   }
   if (per_class[static_cast<std::size_t>(LabelClass::Tissue)] + per_class[static_cast<std::size_t>(LabelClass::Skin)] == 0) {
     throw ImportError(source + ": empty tissue: no voxel has a label of class tissue or skin");

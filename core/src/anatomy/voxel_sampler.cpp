@@ -5,8 +5,14 @@
 namespace palpa::anatomy {
 
 VoxelSampler::VoxelSampler(const LabelVolume& volume, const LabelTable& table) : volume_(volume) {
-  classes_.fill(LabelClass::Outside);
-  for (const auto& [label, entry] : table.labels) classes_[static_cast<std::size_t>(label)] = entry.kind;
+  // The table's labels span at most kMaxLabelSpan values (parse_label_table): the dense
+  // array stays small whatever the labels' signs.
+  if (!table.labels.empty()) {
+    first_ = table.labels.begin()->first;
+    const auto span = static_cast<std::size_t>(static_cast<std::int64_t>(table.labels.rbegin()->first) - first_ + 1);
+    classes_.assign(span, LabelClass::Outside);
+    for (const auto& [label, entry] : table.labels) classes_[static_cast<std::size_t>(label - first_)] = entry.kind;
+  }
   Eigen::Matrix3d d;
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) d(r, c) = volume.direction[static_cast<std::size_t>(3 * r + c)];
@@ -21,7 +27,7 @@ LabelClass VoxelSampler::at(int i, int j, int k) const {
   if (i < 0 || j < 0 || k < 0 || i >= volume_.dims[0] || j >= volume_.dims[1] || k >= volume_.dims[2]) {
     return LabelClass::Outside;
   }
-  return classes_[volume_.labels[volume_.index(i, j, k)]];
+  return class_of(volume_.labels[volume_.index(i, j, k)]);
 }
 
 LabelClass VoxelSampler::nearest(const Vec3& x) const {
@@ -29,10 +35,12 @@ LabelClass VoxelSampler::nearest(const Vec3& x) const {
             static_cast<int>(std::lround(x.z())));
 }
 
-int VoxelSampler::nearest_label(const Vec3& x) const {
+std::optional<Label> VoxelSampler::nearest_label(const Vec3& x) const {
   const int i = static_cast<int>(std::lround(x.x())), j = static_cast<int>(std::lround(x.y())),
             k = static_cast<int>(std::lround(x.z()));
-  if (i < 0 || j < 0 || k < 0 || i >= volume_.dims[0] || j >= volume_.dims[1] || k >= volume_.dims[2]) return -1;
+  if (i < 0 || j < 0 || k < 0 || i >= volume_.dims[0] || j >= volume_.dims[1] || k >= volume_.dims[2]) {
+    return std::nullopt;
+  }
   return volume_.labels[volume_.index(i, j, k)];
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Internal to core/anatomy: a label volume read at world points, by class.
 #include <array>
+#include <cstdint>
 #include <functional>
+#include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -19,19 +22,26 @@ class VoxelSampler {
   Vec3 index_of(const Vec3& p) const { return to_index_ * (p - origin_); }
   /// The class of the voxel nearest to index position x; Outside beyond the volume.
   LabelClass nearest(const Vec3& x) const;
-  /// The label (and its class's entry) of the voxel nearest to x; -1 beyond the volume.
-  int nearest_label(const Vec3& x) const;
+  /// The label of the voxel nearest to x; none beyond the volume.
+  std::optional<Label> nearest_label(const Vec3& x) const;
   /// The share (0..1) of the 8 voxels around x, weighted trilinearly, whose class
   /// `member` accepts: the segmentation's smooth indicator, its 0.5 level the surface.
   double share(const Vec3& x, bool (*member)(LabelClass)) const;
-  LabelClass class_of(int label) const { return classes_[static_cast<std::size_t>(label)]; }
+  /// The class of a label; Outside for a label the table does not list.
+  LabelClass class_of(Label label) const {
+    const auto at = static_cast<std::int64_t>(label) - first_;
+    return at >= 0 && at < static_cast<std::int64_t>(classes_.size()) ? classes_[static_cast<std::size_t>(at)]
+                                                                        : LabelClass::Outside;
+  }
   const LabelVolume& volume() const { return volume_; }
 
  private:
   LabelClass at(int i, int j, int k) const;
 
   const LabelVolume& volume_;
-  std::array<LabelClass, 65536> classes_{};
+  // The classes of the labels from first_ on, densely (a lookup per voxel read).
+  std::int64_t first_ = 0;
+  std::vector<LabelClass> classes_;
   Eigen::Matrix3d to_index_;
   Vec3 origin_;
 };

@@ -118,7 +118,7 @@ inline LabelVolume voxelize(const AnalyticBody& body, double voxel, const Eigen:
       for (int i = 0; i < v.dims[0]; ++i) {
         const Vec3 p = to_vec3(v.world(i, j, k));
         const bool inside_box = std::abs(p.x()) <= body.half_x && std::abs(p.y()) <= body.half_y;
-        v.labels[v.index(i, j, k)] = static_cast<std::uint16_t>(inside_box ? body.label_at(p) : 0);
+        v.labels[v.index(i, j, k)] = static_cast<Label>(inside_box ? body.label_at(p) : 0);
       }
     }
   }

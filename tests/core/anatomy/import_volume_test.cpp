@@ -119,7 +119,7 @@ void expect_refused(const LabelVolume& v, const std::string& words) {
   }
 }
 
-LabelVolume relabelled(LabelVolume v, std::uint16_t from, std::uint16_t to) {
+LabelVolume relabelled(LabelVolume v, Label from, Label to) {
   for (auto& l : v.labels) {
     if (l == from) l = to;
   }

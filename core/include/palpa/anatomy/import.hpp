@@ -21,7 +21,7 @@ struct ImportOptions {
 
 /// One connected component of a lesion label (6-connected voxels).
 struct Lesion {
-  int label = 0;
+  Label label = 0;
   std::string name;           ///< the label table's name for it
   std::size_t voxels = 0;
   Vec3 centre = Vec3::Zero();  ///< m, world: the voxels' centroid
@@ -41,6 +41,9 @@ struct ImportResult {
   /// 3 x 3 smoothing passes the tissue's modulus needed so that its stiffness does not
   /// overshoot between the skeleton points (0 for uniform tissue).
   int smoothing_passes = 0;
+  /// What the import took for granted, for people ("label 0 is not in the table: taken as
+  /// outside, the background").
+  std::vector<std::string> notes;
 };
 
 /// A label volume to a case body: surfaces_from_volume, fit, column moduli, lesions.

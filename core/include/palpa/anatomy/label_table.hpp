@@ -2,7 +2,7 @@
 // What each label of a segmentation is (docs/anatomy-import.md, "Label tables"): tissue
 // the finger presses, skin, the rigid support the body rests on, a lesion that becomes a
 // tumour, or outside the body. JSON:
-//   {"labels": {"<integer label>": {"class": "tissue"|"skin"|"support"|"lesion"|"outside",
+//   {"labels": {"<integer label, any sign>": {"class": "tissue"|"skin"|"support"|"lesion"|"outside",
 //                                  "name": "...", "modulus": <Pa>, "stiffening": <b>}}}
 // with `modulus` required for tissue, skin and lesion, `stiffening` optional.
 #include <cstdint>
@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "palpa/anatomy/label_volume.hpp"
 
 namespace palpa::anatomy {
 
@@ -25,9 +27,9 @@ struct LabelEntry {
 
 struct LabelTable {
   std::string name;  ///< "victre", "generic", or the file's name
-  std::map<int, LabelEntry> labels;
+  std::map<Label, LabelEntry> labels;
 
-  const LabelEntry* find(int label) const;
+  const LabelEntry* find(Label label) const;
   /// True for tissue, skin and lesion: what lies between the support and the air.
   static bool soft(LabelClass kind) { return kind == LabelClass::Tissue || kind == LabelClass::Skin || kind == LabelClass::Lesion; }
 };
@@ -36,6 +38,9 @@ struct LabelTable {
 inline constexpr std::size_t kMaxLabelTableBytes = 1u << 20;
 inline constexpr std::size_t kMaxLabels = 4096;
 inline constexpr std::size_t kMaxLabelNameLength = 64;
+/// The labels of one table lie within this many consecutive integers (any sign): the
+/// import looks classes up in an array over them.
+inline constexpr std::size_t kMaxLabelSpan = std::size_t{1} << 20;
 
 /// Parses a label table; `source` names it in errors. Throws ImportError with one line
 /// "SOURCE: /labels/KEY/FIELD: what is wrong".

@@ -5,9 +5,14 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace palpa::anatomy {
+
+/// A voxel's label: any integer a segmentation tool writes, negative ones included
+/// (patient MRI models label lesions -4 and -3, skin -2, muscle -1).
+using Label = std::int32_t;
 
 /// World coordinates are RAS, the frame of NIfTI and 3D Slicer: +x towards the patient's
 /// right, +y anterior, +z superior (docs/anatomy-import.md, "Coordinates"); a reader of an
@@ -20,7 +25,7 @@ struct LabelVolume {
   /// world(i, j, k) = origin + direction * (spacing[0] i, spacing[1] j, spacing[2] k).
   std::array<double, 9> direction{1, 0, 0, 0, 1, 0, 0, 0, 1};
   /// One label per voxel, i fastest: voxel (i, j, k) at i + dims[0] * (j + dims[1] * k).
-  std::vector<std::uint16_t> labels;
+  std::vector<Label> labels;
 
   std::size_t voxel_count() const {
     return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);
@@ -34,7 +39,10 @@ struct LabelVolume {
 };
 
 /// The most voxels a volume may claim (2^27, e.g. 512^3): checked from the header before
-/// anything is allocated; 2 bytes a voxel here and about as much in the reader.
+/// anything is allocated; 4 bytes a voxel here and about as much in the reader.
 inline constexpr std::size_t kMaxVoxels = std::size_t{1} << 27;
+
+/// How many voxels hold each label (one pass; runs of one label counted at once).
+std::map<Label, std::size_t> label_counts(const LabelVolume& volume);
 
 }  // namespace palpa::anatomy
