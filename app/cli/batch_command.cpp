@@ -217,6 +217,24 @@ score::Score stored_or_scored(session::SampleStream& stream, const std::string& 
   }
 }
 
+/// A stored session's page draws its force plot from a pass over every sample, made in
+/// this process: past kMaxStoredTraceTicks (20 minutes at 1 kHz) it is left out, with a note,
+/// so that a station's long files cost a report no more than honest ones (docs/centre.md).
+constexpr std::uint64_t kMaxStoredTraceTicks = 1'200'000;
+
+std::unique_ptr<report::ForceTrace> trace_for_page(const session::SampleStream& stream, const std::string& file,
+                                                   const BatchOptions& o, score::Score& score) {
+  if (!o.result_of.contains(file) || stream.declared_count() <= kMaxStoredTraceTicks) {
+    return report::read_force_trace(file);
+  }
+  score.notes.push_back(fmt::format("force plot not drawn: {} samples, more than a report from the store reads "
+                                    "({}); palpa-cli score FILE --report DIR draws it",
+                                    stream.declared_count(), kMaxStoredTraceTicks));
+  auto empty = std::make_unique<report::ForceTrace>(stream.head(), 0);
+  empty->finish();
+  return empty;
+}
+
 /// Reads and scores one session (and writes its report files); the samples are dropped on return.
 Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOptions& o, std::string& output_error) {
   Outcome outcome;
@@ -243,8 +261,8 @@ Outcome process(const Input& input, const fs::path& sessions_dir, const BatchOpt
     auto score = stored_or_scored(stream, input.file, o);
     if (o.reports) {
       try {  // the force plot's trace from a second pass: no sample is kept
-        report::write_session_report(sessions_dir, input.stem, header, *report::read_force_trace(input.file), score,
-                                     {true, true, true, false});
+        report::write_session_report(sessions_dir, input.stem, header, *trace_for_page(stream, input.file, o, score),
+                                     score, {true, true, true, false});
       } catch (const std::exception& e) {
         output_error = e.what();
       }
@@ -331,9 +349,23 @@ report::TraineeCurve write_curve(const fs::path& out, const std::vector<const Sc
 // tallied in `left_out` for the page's notes. `scored` is sorted by trainee then start.
 std::vector<const Scored*> curve_attempts(const std::vector<Scored>& scored, const BatchOptions& o,
                                           report::LeftOut& left_out) {
+  // A session counts when its station is enrolled for the trainee by a coordinator, or by
+  // its own first push while no coordinator enrolled the trainee and no other station
+  // pushed for them. Pushed from elsewhere too, a first push proves nothing (whoever
+  // pushed first may be the intruder): the trainee is disputed until a coordinator says.
+  std::set<std::string> pushed_elsewhere;
+  for (const auto& [file, row] : o.row_of) {
+    if (!row.enrolled) pushed_elsewhere.insert(row.trainee);
+  }
+  const auto not_enrolled = [](const StoredRow& r) { return !r.enrolled || (r.provisional && r.trainee_confirmed); };
   std::vector<const Scored*> attempts;
   for (const auto& s : scored) {
-    if (const auto row = o.row_of.find(s.header.file); row != o.row_of.end() && !row->second.enrolled) {
+    const auto row = o.row_of.find(s.header.file);
+    const bool stored = row != o.row_of.end();
+    if (stored && !not_enrolled(row->second) && row->second.provisional &&
+        pushed_elsewhere.contains(s.header.trainee)) {
+      left_out.disputed[s.header.trainee].insert(s.header.station);
+    } else if (stored && not_enrolled(row->second)) {
       left_out.unenrolled[s.header.trainee].insert(s.header.station);
       ++left_out.unenrolled_sessions;
     } else if (s.header.mode != "trainee" && !o.all_modes) {
@@ -342,6 +374,11 @@ std::vector<const Scored*> curve_attempts(const std::vector<Scored>& scored, con
       ++left_out.abandoned;
     } else {
       attempts.push_back(&s);
+    }
+  }
+  for (auto& [trainee, stations] : left_out.disputed) {
+    if (const auto other = left_out.unenrolled.find(trainee); other != left_out.unenrolled.end()) {
+      stations.insert(other->second.begin(), other->second.end());
     }
   }
   return attempts;

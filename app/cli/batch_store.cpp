@@ -244,7 +244,7 @@ StoreDownload download(store::Connection& c, const fs::path& folder, const repor
       write_copy(path, store::session_file(c, s.id), s.sha256);
       d.files.push_back(path.string());
       d.station_of[path.string()] = s.station;
-      d.row_of[path.string()] = {s.session_id, s.trainee, s.mode, s.enrolled};
+      d.row_of[path.string()] = {s.session_id, s.trainee, s.mode, s.enrolled, s.provisional, s.trainee_confirmed};
       d.result_of[path.string()] = store::stored_result(c, s.id);
     } catch (const store::StoreError& e) {
       if (e.unreachable()) throw;

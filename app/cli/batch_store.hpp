@@ -32,6 +32,10 @@ struct StoreBatchOptions {
 struct StoredRow {
   std::string session_id, trainee, mode;
   bool enrolled = true;  ///< pushed by a station the trainee is enrolled at (else flagged, not in curves)
+  /// Enrolled there only by the station's own first push: when another station also pushed
+  /// for the trainee, no one can tell whose the trainee is, and neither counts.
+  bool provisional = false;
+  bool trainee_confirmed = false;  ///< a coordinator enrolled the trainee at some station
 };
 
 /// What came down from the store for the folder batch: the files, the station that pushed

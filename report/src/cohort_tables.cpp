@@ -109,6 +109,14 @@ std::vector<std::string> left_out_notes(const LeftOut& l) {
     notes.push_back(fmt::format("{} {} outside the selection ({}) and in no output; run without {} to include them.",
                                 l.filtered, l.filtered == 1 ? "session is" : "sessions are", l.filter,
                                 l.filter_options));
+  for (const auto& [trainee, stations] : l.disputed) {
+    std::string names;
+    for (const auto& station : stations) names += fmt::format("{}{}", names.empty() ? "" : ", ", printable(station, 64));
+    notes.push_back(fmt::format("Flagged: trainee {} was pushed from stations {} and no coordinator enrolled them at "
+                                "any: none of their attempts is in the learning curves until a coordinator enrols "
+                                "the right station (palpa-cli store enrol).",
+                                printable(trainee, 80), names));
+  }
   if (l.unenrolled_sessions > 0) {
     std::string who;
     for (const auto& [trainee, stations] : l.unenrolled) {

@@ -26,8 +26,10 @@ std::pair<char32_t, std::size_t> decode(std::string_view s, std::size_t i) {
   return {cp, n};
 }
 
-// Controls, bidirectional controls and the invisible characters (Unicode's
-// Default_Ignorable_Code_Point, as far as a name could hide one): shown by code point.
+// Controls, bidirectional controls, the invisible characters (Unicode's
+// Default_Ignorable_Code_Point, DerivedCoreProperties.txt), the other format characters
+// (Arabic number signs, Egyptian hieroglyph format controls) and the blank braille
+// pattern U+2800, which renders as nothing: shown by code point.
 bool hidden(char32_t cp) {
   struct Range {
     char32_t first, last;
@@ -36,7 +38,9 @@ bool hidden(char32_t cp) {
       {0x00, 0x1F},       {0x7F, 0x9F},     {0xAD, 0xAD},     {0x34F, 0x34F},   {0x61C, 0x61C},
       {0x115F, 0x1160},   {0x17B4, 0x17B5}, {0x180B, 0x180F}, {0x200B, 0x200F}, {0x2028, 0x202E},
       {0x2060, 0x206F},   {0x3164, 0x3164}, {0xFE00, 0xFE0F}, {0xFEFF, 0xFEFF}, {0xFFA0, 0xFFA0},
-      {0xFFF0, 0xFFFB},   {0xE0000, 0xE0FFF}};
+      {0xFFF0, 0xFFFB},   {0x600, 0x605},   {0x6DD, 0x6DD},   {0x70F, 0x70F},   {0x8E2, 0x8E2},
+      {0x2800, 0x2800},   {0x110BD, 0x110BD}, {0x110CD, 0x110CD}, {0x13430, 0x1343F}, {0x1BCA0, 0x1BCA3},
+      {0x1D173, 0x1D17A}, {0xE0000, 0xE0FFF}};
   for (const auto& r : kHidden) {
     if (cp >= r.first && cp <= r.last) return true;
   }

@@ -16,7 +16,9 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
       "SELECT s.id, s.session_id, s.station, t.name, s.file_name, s.sha256, "
       "to_char(s.started_at AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'), "
       "EXISTS (SELECT 1 FROM scores sc WHERE sc.session_id = s.id), s.mode, "
-      "coalesce(w.done, false), coalesce(w.last_error, ''), s.enrolled "
+      "coalesce(w.done, false), coalesce(w.last_error, ''), "
+      "coalesce((SELECT e.enrolled_by FROM enrolments e WHERE e.trainee_id = s.trainee_id AND e.station = s.station), "
+      "''), EXISTS (SELECT 1 FROM enrolments e WHERE e.trainee_id = s.trainee_id AND e.enrolled_by <> 'first push') "
       "FROM sessions s JOIN trainees t ON t.id = s.trainee_id LEFT JOIN work_queue w ON w.session_id = s.id "
       "WHERE ($1::double precision IS NULL OR s.started_at >= to_timestamp($1::double precision)) "
       "AND ($2::double precision IS NULL OR s.started_at < to_timestamp($2::double precision)) "
@@ -38,7 +40,9 @@ std::vector<StoredSession> list_sessions(Connection& c, const SessionFilter& f) 
     s.ended_unscored = r.text(i, 9) == "t" && !s.scored;
     s.last_error = r.text(i, 10);
     s.pending = !s.scored && r.text(i, 9) == "f";
-    s.enrolled = r.text(i, 11) == "t";
+    s.enrolled = !r.text(i, 11).empty();
+    s.provisional = r.text(i, 11) == "first push";
+    s.trainee_confirmed = r.text(i, 12) == "t";
     all.push_back(std::move(s));
   }
   return all;

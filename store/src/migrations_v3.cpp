@@ -69,6 +69,27 @@ GRANT SELECT ON public.claim_turns TO palpa_worker, palpa_coordinator;
 // are letters of real names. Checked when a name first enters the store: a trainee a
 // version-2 store took keeps its name.
 constexpr const char* kV3Names = R"sql(
+-- The invisible characters of version 2, and the rest of Unicode's default-ignorable and
+-- format characters a name could hide (as report/src/printable.cpp shows them).
+CREATE OR REPLACE FUNCTION public.palpa_check_text(p_field text, p_value text, p_max integer)
+  RETURNS void LANGUAGE plpgsql IMMUTABLE SET search_path = pg_catalog, pg_temp AS $fn$
+BEGIN
+  IF p_value IS NULL OR p_value = '' THEN
+    RAISE EXCEPTION 'field %: empty', p_field USING ERRCODE = '22023';
+  END IF;
+  IF pg_catalog.char_length(p_value) > p_max THEN
+    RAISE EXCEPTION 'field %: longer than % characters', p_field, p_max USING ERRCODE = '22023';
+  END IF;
+  IF p_value ~ ('[\u0001-\u001f\u007f-\u009f\u00ad\u034f\u061c\u115f\u1160\u17b4\u17b5\u180b-\u180f'
+                '\u200b-\u200f\u2028-\u202e\u2060-\u206f\u3164\ufe00-\ufe0f\ufeff\uffa0\ufff0-\ufffb'
+                '\u0600-\u0605\u06dd\u070f\u08e2\u2800\U000110bd\U000110cd\U00013430-\U0001343f'
+                '\U0001bca0-\U0001bca3\U0001d173-\U0001d17a\U000e0000-\U000e0fff]') THEN
+    RAISE EXCEPTION 'field %: holds a control, invisible or bidirectional-override character', p_field
+      USING ERRCODE = '22023';
+  END IF;
+END
+$fn$;
+
 CREATE FUNCTION public.palpa_check_name(p_field text, p_value text, p_max integer)
   RETURNS void LANGUAGE plpgsql IMMUTABLE SET search_path = pg_catalog, pg_temp AS $fn$
 DECLARE
@@ -82,13 +103,21 @@ BEGIN
   IF p_value ~ '^\s|\s$|\s\s' THEN
     RAISE EXCEPTION 'field %: starts or ends with a space, or holds two in a row', p_field USING ERRCODE = '22023';
   END IF;
-  IF p_value ~ '[\u0300-\u036f\u1ab0-\u1aff\u1dc0-\u1dff\u20d0-\u20ff\ufe20-\ufe2f]{3}' THEN
+  IF p_value ~ ('[\u0300-\u036f\u0591-\u05c7\u0610-\u061a\u064b-\u065f\u0670\u06d6-\u06ed\u0900-\u0903'
+                '\u093a-\u094f\u0e31\u0e34-\u0e3a\u0e47-\u0e4e\u1ab0-\u1aff\u1dc0-\u1dff\u20d0-\u20ff'
+                '\ufe20-\ufe2f]{3}') THEN
     RAISE EXCEPTION 'field %: more than two combining marks on one letter', p_field USING ERRCODE = '22023';
   END IF;
   v_scripts := (p_value ~ '[A-Za-z\u00c0-\u024f\u1e00-\u1eff\u2c60-\u2c7f\ua720-\ua7ff]')::integer
                + (p_value ~ '[\u0250-\u02af\u1d00-\u1dbf]')::integer
                + (p_value ~ '[\u0370-\u03ff\u1f00-\u1fff]')::integer + (p_value ~ '[\u0400-\u052f\u1c80-\u1c8f\ua640-\ua69f]')::integer
                + (p_value ~ '[\u0530-\u058f]')::integer + (p_value ~ '[\u13a0-\u13ff\uab70-\uabbf]')::integer;
+  -- Latin letters beside anything but Latin, digits, marks and punctuation (Coptic, Lisu,
+  -- a click letter that looks like l): a mix.
+  IF p_value ~ '[A-Za-z]' AND p_value ~ ('[^\u0020-\u007e\u00a0-\u01bf\u01c4-\u024f\u0300-\u036f\u1e00-\u1eff'
+                                         '\u2010-\u2027\u2030-\u205e\u2c60-\u2c7f\ua720-\ua7ff]') THEN
+    v_scripts := 2;
+  END IF;
   IF v_scripts > 1 THEN
     RAISE EXCEPTION 'field %: mixes letters of Latin, IPA, Greek, Cyrillic, Armenian or Cherokee (look-alikes)', p_field
       USING ERRCODE = '22023';
@@ -364,7 +393,10 @@ BEGIN
   INSERT INTO public.trainees(name) VALUES (p_trainee) ON CONFLICT (name) DO NOTHING;
   SELECT t.id INTO v_trainee FROM public.trainees t WHERE t.name = p_trainee;
   IF p_enrol THEN
-    INSERT INTO public.enrolments(trainee_id, station) VALUES (v_trainee, p_station) ON CONFLICT DO NOTHING;
+    -- A coordinator's word replaces a first push's: the enrolment is confirmed.
+    INSERT INTO public.enrolments(trainee_id, station) VALUES (v_trainee, p_station)
+      ON CONFLICT (trainee_id, station) DO UPDATE SET enrolled_by = session_user, enrolled_at = pg_catalog.now()
+      WHERE public.enrolments.enrolled_by = 'first push';
   ELSE
     DELETE FROM public.enrolments e WHERE e.trainee_id = v_trainee AND e.station = p_station;
   END IF;

@@ -100,7 +100,9 @@ class Names(Store):
         before = self.state()
         for k, name in enumerate(["alice ", " alice", "al  ice", "al\u00a0ice", "\u0430lice", "e\u0301va",
                                   "a" + "\u0301" * 100, "x" + "\u0301" * 3, "\uff41lice", "\u03b1lice",
-                                  "\u0251lice", "\u0585lice"]):
+                                  "\u0251lice", "\u0585lice", "alice\U0001D173", "alice\U0001BCA0", "alice\u2800",
+                                  "\uA4EElice", "a\uA4E1ice", "\u2C9Elice", "a\u01C0ice", "alice\u0600",
+                                  "a\u05B0\u05B1\u05B2\u05B3\u05B4lice"]):
             res = self.call_push(trainee=literal(name), id=literal(self.new_id(300 + k)))
             self.assertNotEqual(res.returncode, 0, repr(name))
             self.assertIn("field trainee", res.stderr, repr(name))
@@ -252,6 +254,23 @@ class PendingReports(Store):
         self.assertEqual(len(rows), int(self.admin("SELECT count(*) FROM scores")))
         self.assertEqual({r["coverage"] for r in rows}, {"0.123"}, rows)
 
+    def test_a_long_stored_session_costs_its_page_no_pass_over_its_samples(self):
+        long_file = self.path("long.palpa")
+        write_constant_session(long_file, hostile.REPO, 2_000_000)
+        self.assertEqual(self.push("station_2", "room-2", with_meta(long_file, self.path("long-id.palpa"),
+                                                                   id=self.new_id(620))).returncode, 0)
+        self.assertEqual(self.worker().returncode, 0)
+        out = self.path("long-pages")
+        res = run_cli("batch", "--store", self.pg.url(self.DB, "coord"), "--out", out, "--reports", "--all-modes")
+        self.assertIn(res.returncode, (0, 2), res.stderr)
+        noted = []
+        for name in os.listdir(os.path.join(out, "sessions")):
+            if name.endswith(".html"):
+                with open(os.path.join(out, "sessions", name), encoding="utf-8") as fh:
+                    if "force plot not drawn: 2000000 samples" in fh.read():
+                        noted.append(name)
+        self.assertEqual(len(noted), 1, noted)
+
     def test_session_pages_escape_every_field_of_the_file(self):
         evil = with_meta(self.small, self.path("fields.palpa"), id=self.new_id(610), device="dev\x1b[2J\u202eice",
                          software_version="1.0\x07<script>", case_source="/cases/\u202egnp.json")
@@ -282,18 +301,51 @@ class Enrolment(Store):
         forged = [self.session(710 + k, trainee="tina") for k in range(2)]
         res = self.push("station_evil", "room-evil", *forged)
         self.assertEqual(res.returncode, 0, res.stderr)  # stored, so a coordinator sees it, and flagged
-        self.assertEqual(self.admin("SELECT count(*) FROM sessions WHERE NOT enrolled"), "2")
+        self.assertEqual(self.admin("SELECT count(*) FROM sessions s JOIN trainees t ON t.id = s.trainee_id "
+                                    "WHERE NOT s.enrolled AND t.name = 'tina'"), "2")
         self.assertEqual(self.worker().returncode, 0)
         out = self.path("report")
         res = run_cli("batch", "--store", self.pg.url(self.DB, "coord"), "--out", out, "--all-modes")
         self.assertIn(res.returncode, (0, 2), res.stderr)
-        curve = read_csv(os.path.join(out, "trainees", stem("tina") + ".csv"))
-        self.assertEqual([a["station"] for a in curve], ["room-1", "room-1"])
+        # Who is the intruder? The first push proves nothing: no attempt of tina counts yet.
+        self.assertFalse(os.path.exists(os.path.join(out, "trainees", stem("tina") + ".csv")))
         with open(os.path.join(out, "cohort.html")) as fh:
             html = fh.read()
-        self.assertIn("Flagged: 2 sessions were pushed by a station the trainee is not enrolled at", html)
-        self.assertIn("trainee tina from station room-evil", html)
+        self.assertIn("Flagged: trainee tina was pushed from stations room-1, room-evil", html)
         self.assertEqual(len([r for r in read_csv(os.path.join(out, "summary.csv")) if r["trainee"] == "tina"]), 4)
+        enrol = run_cli("store", "enrol", "tina", "--station", "room-1", "--store", self.pg.url(self.DB, "coord"))
+        self.assertEqual(enrol.returncode, 0, enrol.stderr)
+        self.assertIn("enrolled: trainee tina at station room-1\n", enrol.stdout)  # confirmed, not "already so"
+        res = run_cli("batch", "--store", self.pg.url(self.DB, "coord"), "--out", out + "-2", "--all-modes")
+        curve = read_csv(os.path.join(out + "-2", "trainees", stem("tina") + ".csv"))
+        self.assertEqual([a["station"] for a in curve], ["room-1", "room-1"])
+        with open(os.path.join(out + "-2", "cohort.html")) as fh:
+            html = fh.read()
+        self.assertIn("sessions were pushed by a station the trainee is not enrolled at", html)
+        self.assertIn("trainee tina from station room-evil", html)
+
+    def test_a_trainee_first_pushed_by_an_intruder_counts_for_no_one(self):
+        # The intruder pushes a trainee id before its own station does (ids are guessable).
+        first = [self.session(750 + k, trainee="vera") for k in range(2)]
+        self.assertEqual(self.push("station_evil", "room-evil", *first).returncode, 0)
+        own = [self.session(760 + k, trainee="vera") for k in range(2)]
+        self.assertEqual(self.push("station_1", "room-1", *own).returncode, 0)
+        self.assertEqual(self.worker().returncode, 0)
+        out = self.path("vera")
+        res = run_cli("batch", "--store", self.pg.url(self.DB, "coord"), "--out", out, "--all-modes")
+        self.assertIn(res.returncode, (0, 2), res.stderr)
+        with open(os.path.join(out, "cohort.html")) as fh:
+            html = fh.read()
+        self.assertIn("Flagged: trainee vera was pushed from stations room-1, room-evil and no coordinator enrolled "
+                      "them at any", html)
+        self.assertFalse(os.path.exists(os.path.join(out, "trainees", stem("vera") + ".csv")))
+        # A coordinator says whose the trainee is: that station's attempts count, the other's are flagged.
+        enrol = run_cli("store", "enrol", "vera", "--station", "room-1", "--store", self.pg.url(self.DB, "coord"))
+        self.assertEqual(enrol.returncode, 0, enrol.stderr)
+        res = run_cli("batch", "--store", self.pg.url(self.DB, "coord"), "--out", out + "-2", "--all-modes")
+        self.assertIn(res.returncode, (0, 2), res.stderr)
+        curve = read_csv(os.path.join(out + "-2", "trainees", stem("vera") + ".csv"))
+        self.assertEqual([a["station"] for a in curve], ["room-1", "room-1"])
 
     def test_refusing_unenrolled_pushes_says_the_same_for_every_name(self):
         self.assertEqual(self.push("station_1", "room-1", self.session(720, trainee="uma")).returncode, 0)
@@ -361,8 +413,7 @@ class Locks(Store):
             self.assertIn("already up to date", init.stdout)
             self.assertLess(time.monotonic() - start, 30.0)
         finally:
-            evil.stdin.close()
-            evil.wait(timeout=60)
+            evil.communicate(timeout=60)  # closes its input: psql ends, and its transaction with it
         again = self.push("station_2", "room-2", "--outbox-only")
         self.assertIn("outbox: 1 sent, 0 waiting", again.stdout, again.stdout + again.stderr)
 

@@ -32,6 +32,12 @@ TEST(Printable, InvisibleCharactersThatMakeLookAlikeNamesAreShown) {
   EXPECT_EQ(printable("\ufeffbob"), "\\u{feff}bob");          // byte-order mark
   EXPECT_EQ(printable("a\u00adb\u061cc"), "a\\xadb\\u{061c}c");  // soft hyphen, Arabic letter mark
   EXPECT_EQ(printable("x\U000E0041y"), "x\\u{e0041}y");       // a tag character
+  // Default-ignorable and format characters beyond the common ones, and the blank braille
+  // pattern: each renders as nothing after "alice".
+  EXPECT_EQ(printable("alice\U0001D173"), "alice\\u{1d173}");  // musical symbol begin beam
+  EXPECT_EQ(printable("alice\U0001BCA0"), "alice\\u{1bca0}");  // shorthand format letter overlap
+  EXPECT_EQ(printable("alice\u2800"), "alice\\u{2800}");       // braille pattern blank
+  EXPECT_EQ(printable("alice\u0600"), "alice\\u{0600}");       // Arabic number sign
   EXPECT_EQ(printable("\u3164"), "\\u{3164}");                // Hangul filler
   EXPECT_TRUE(is_printable("r\u03bfom"));  // a Greek omicron is visible: shown as it is
 }

@@ -60,6 +60,9 @@ struct LeftOut {
   /// enrolment there (flagged, never in a curve: a station may not speak for another's trainee).
   std::map<std::string, std::set<std::string>> unenrolled;
   std::size_t unenrolled_sessions = 0;
+  /// Trainees pushed both by the station their first push enrolled them at and by another:
+  /// trainee -> every station that pushed for them; none of their attempts is in a curve.
+  std::map<std::string, std::set<std::string>> disputed;
 };
 
 /// One flag per trainee whose attempts in the curves came from more than one station:

@@ -22,7 +22,10 @@ struct StoredSession {
   bool scored = false;          ///< has a score row (any scorer version)
   bool ended_unscored = false;  ///< the workers ended it without a score: refused or retired
   bool pending = false;         ///< in the work queue, not scored yet
+  /// The enrolments as they are now (a coordinator may have enrolled the trainee since):
   bool enrolled = true;         ///< the trainee is enrolled at the station that pushed it
+  bool provisional = false;     ///< enrolled there by the station's own first push only
+  bool trainee_confirmed = false;  ///< a coordinator (or the migration) enrolled the trainee somewhere
   std::string last_error;       ///< why, as the worker wrote it
 };
 
