@@ -242,6 +242,24 @@ REVOKE ALL ON FUNCTION public.palpa_check_quota(bigint) FROM PUBLIC;
 // lifted by the caller: it applies inside the call whatever the session set. (A
 // statement_timeout set there would not: its clock starts with the caller's statement.)
 constexpr const char* kV3Push = R"sql(
+-- The checksum of the session stored under this id by the caller's login, or NULL when
+-- none is; an id another login took is refused without saying whose it is.
+CREATE FUNCTION public.palpa_stored_sha(p_session_id text)
+  RETURNS text LANGUAGE plpgsql STABLE SET search_path = pg_catalog, pg_temp AS $fn$
+DECLARE
+  v_sha text;
+  v_by text;
+BEGIN
+  SELECT s.sha256, s.uploaded_by INTO v_sha, v_by FROM public.sessions s WHERE s.session_id = p_session_id;
+  IF FOUND AND v_by IS DISTINCT FROM session_user THEN
+    RAISE EXCEPTION 'session %: this id is taken; not stored', p_session_id USING ERRCODE = '23505';
+  END IF;
+  RETURN v_sha;
+END
+$fn$;
+ALTER FUNCTION public.palpa_stored_sha(text) OWNER TO palpa_owner;
+REVOKE ALL ON FUNCTION public.palpa_stored_sha(text) FROM PUBLIC;
+
 CREATE OR REPLACE FUNCTION public.palpa_push_session(p_station text, p_session_id text, p_trainee text,
     p_case_title text, p_case jsonb, p_started_at timestamptz, p_mode text, p_complete boolean, p_samples bigint,
     p_file_name text, p_events jsonb, p_file bytea)
@@ -249,7 +267,6 @@ CREATE OR REPLACE FUNCTION public.palpa_push_session(p_station text, p_session_i
   LANGUAGE plpgsql SECURITY DEFINER SET search_path = pg_catalog, public, pg_temp SET lock_timeout = '5s' AS $fn$
 DECLARE
   v_owner text;
-  v_by text;
   v_sha text;
   v_case_sha text;
   v_trainee bigint;
@@ -271,11 +288,8 @@ BEGIN
   IF v_owner IS DISTINCT FROM session_user THEN
     RAISE EXCEPTION 'station "%" is registered to another login', p_station USING ERRCODE = '42501';
   END IF;
-  SELECT s.sha256, s.uploaded_by INTO v_sha, v_by FROM public.sessions s WHERE s.session_id = p_session_id;
-  IF FOUND THEN
-    IF v_by IS DISTINCT FROM session_user THEN
-      RAISE EXCEPTION 'session %: this id is taken; not stored', p_session_id USING ERRCODE = '23505';
-    END IF;
+  v_sha := public.palpa_stored_sha(p_session_id);
+  IF v_sha IS NOT NULL THEN
     RETURN QUERY SELECT false, v_sha;
     RETURN;
   END IF;
@@ -314,11 +328,7 @@ BEGIN
     ON CONFLICT (session_id) DO NOTHING
     RETURNING id INTO v_id;
   IF v_id IS NULL THEN  -- the same id pushed at the same time from elsewhere
-    SELECT s.sha256, s.uploaded_by INTO v_sha, v_by FROM public.sessions s WHERE s.session_id = p_session_id;
-    IF v_by IS DISTINCT FROM session_user THEN
-      RAISE EXCEPTION 'session %: this id is taken; not stored', p_session_id USING ERRCODE = '23505';
-    END IF;
-    RETURN QUERY SELECT false, v_sha;
+    RETURN QUERY SELECT false, public.palpa_stored_sha(p_session_id);
     RETURN;
   END IF;
   INSERT INTO public.work_queue(session_id, login) VALUES (v_id, session_user);

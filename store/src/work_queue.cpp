@@ -31,6 +31,15 @@ void retire_poison(Connection& c) {
          "AND (w.lease_expires IS NULL OR w.lease_expires < now())");
 }
 
+// Gives the row back with `error` if `owner` holds it; true when it did.
+bool give_back(Connection& c, long long id, const std::string& owner, const std::string& error) {
+  const auto r = c.exec("give the claim back",
+                        "UPDATE work_queue SET lease_owner = NULL, lease_expires = NULL, last_error = $3 "
+                        "WHERE session_id = $1::bigint AND lease_owner = $2 AND NOT done RETURNING session_id",
+                        {Param::text(std::to_string(id)), Param::text(owner), Param::text(error)});
+  return r.rows() == 1;
+}
+
 Claim read_claim(Connection& c, long long id) {
   const auto r = c.exec("read the claimed session",
                         "SELECT s.session_id, s.file_name, s.file, s.station, t.name, s.mode, "
@@ -75,9 +84,7 @@ std::optional<Claim> claim_next(Connection& c, const std::string& owner, double 
     // A row this worker cannot read (the server ran out of memory making its text, a
     // timeout): given back with the reason, so that it is retired after
     // max_score_attempts claims, whatever the error's class.
-    Claim stub;
-    stub.id = id;
-    release_claim(c, stub, owner, e.what());
+    give_back(c, id, owner, e.what());
     throw ClaimError(fmt::format("store: session row {}: {}", id, e.what()));
   }
 }
@@ -110,11 +117,7 @@ bool finish_claim(Connection& c, const Claim& claim, const std::string& owner, c
 }
 
 bool release_claim(Connection& c, const Claim& claim, const std::string& owner, const std::string& error) {
-  const auto r = c.exec("give the claim back",
-                        "UPDATE work_queue SET lease_owner = NULL, lease_expires = NULL, last_error = $3 "
-                        "WHERE session_id = $1::bigint AND lease_owner = $2 AND NOT done RETURNING session_id",
-                        {Param::text(std::to_string(claim.id)), Param::text(owner), Param::text(error)});
-  return r.rows() == 1;
+  return give_back(c, claim.id, owner, error);
 }
 
 bool fail_claim(Connection& c, const Claim& claim, const std::string& owner, const std::string& error) {
